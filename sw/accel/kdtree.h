@@ -1,0 +1,63 @@
+// kd-tree construction. The tree comes out already in the memory-image node
+// encoding (common/image_format.h): nodes in depth-first order with the below
+// child adjacent to its parent, leaves pointing into one shared list array.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "common/image_format.h"
+#include "scene/scene.h"
+
+namespace kdrt {
+
+enum class SplitMethod {
+  kSah,       // surface area heuristic, Wald & Havran 2006 O(N log N) event sweep
+  kMedian,    // median of triangle-box centres on the longest axis
+  kMidpoint,  // spatial middle of the node box on the longest axis
+};
+
+// pbrt-v3 KdTreeAccel defaults.
+struct BuildOptions {
+  SplitMethod method = SplitMethod::kSah;
+  float traversal_cost = 1.0f;
+  float isect_cost = 80.0f;
+  float empty_bonus = 0.5f;
+  int max_depth = -1;        // -1: round(8 + 1.3 log2 N)
+  int max_leaf_prims = 1;    // a node with this many or fewer becomes a leaf
+  bool perfect_splits = false;  // clip triangles to the node box (SAH only)
+};
+
+SplitMethod ParseSplitMethod(const std::string& name);  // "sah", "median", "midpoint"
+const char* SplitMethodName(SplitMethod m);
+
+struct TreeStats {
+  uint32_t nodes = 0;
+  uint32_t inner_nodes = 0;
+  uint32_t leaves = 0;
+  uint32_t empty_leaves = 0;
+  uint32_t max_depth = 0;         // root has depth 0
+  double avg_leaf_depth = 0;      // over all leaves
+  uint32_t max_leaf_prims = 0;
+  double avg_leaf_prims = 0;      // over non-empty leaves
+  uint64_t references = 0;        // total leaf list entries
+  double refs_per_triangle = 0;   // references / non-degenerate triangles
+  double sah_cost = 0;            // expected cost of the finished tree (pbrt's cost model)
+  uint32_t degenerate_triangles = 0;  // left out of the tree
+  double build_seconds = 0;
+};
+
+struct KdTree {
+  std::vector<img::Node> nodes;  // root = 0
+  std::vector<uint32_t> lists;   // triangle ids (scene order)
+  glm::vec3 bounds_min{0.0f};    // box of the non-degenerate triangles
+  glm::vec3 bounds_max{0.0f};
+  TreeStats stats;
+};
+
+KdTree BuildKdTree(const Scene& scene, const BuildOptions& options = {});
+
+}  // namespace kdrt

@@ -1,0 +1,44 @@
+// Rays, hits and per-ray work counters shared by the reference tracer, the
+// ray files and the simulator.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include <glm/vec3.hpp>
+
+namespace kdrt {
+
+inline constexpr uint32_t kNoPrim = 0xFFFFFFFFu;
+
+struct Ray {
+  glm::vec3 o;
+  glm::vec3 d;
+  float tmin = 0.0f;
+  float tmax = std::numeric_limits<float>::infinity();
+};
+
+// A hit record; a miss has t = +inf, prim = kNoPrim, u = v = 0.
+// u and v are the barycentric weights of v1 and v2 (Embree's convention):
+// p = (1 - u - v) v0 + u v1 + v v2.
+struct Hit {
+  float t = std::numeric_limits<float>::infinity();
+  uint32_t prim = kNoPrim;
+  float u = 0.0f;
+  float v = 0.0f;
+  bool IsHit() const { return prim != kNoPrim; }
+};
+
+struct RayCounters {
+  uint32_t nodes = 0;      // inner and leaf nodes fetched
+  uint32_t leaves = 0;     // leaf nodes fetched (including empty ones)
+  uint32_t tri_tests = 0;  // ray/triangle tests
+  RayCounters& operator+=(const RayCounters& o) {
+    nodes += o.nodes;
+    leaves += o.leaves;
+    tri_tests += o.tri_tests;
+    return *this;
+  }
+};
+
+}  // namespace kdrt

@@ -1,0 +1,58 @@
+// The scene as loaded from a file or made by a generator: a triangle soup
+// with per-triangle surface colours and an optional NFF camera.
+//
+// Triangle numbering is part of kdrt's output contract: triangles are numbered
+// in file order, and a polygon with n vertices becomes n-2 triangles fanned
+// from its first vertex (v0,v1,v2), (v0,v2,v3), ... Zero-area triangles keep
+// their number but are never hit (the builder leaves them out of the tree).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace kdrt {
+
+// NFF viewing specification. `angle` (degrees) spans the centres of the first
+// and last pixel columns (and rows, scaled by the aspect ratio); row 0 is the
+// top of the image.
+struct Camera {
+  glm::vec3 from{0, 0, 1};
+  glm::vec3 at{0, 0, 0};
+  glm::vec3 up{0, 1, 0};
+  float angle_deg = 45.0f;
+  float hither = 0.0f;  // rays start at t = hither (direction normalised)
+  int width = 512;
+  int height = 512;
+};
+
+struct Triangle {
+  glm::vec3 v0, v1, v2;
+};
+
+struct Scene {
+  std::vector<Triangle> triangles;  // primitive id = index, file order
+  std::vector<uint32_t> material;   // per triangle: index into colors
+  std::vector<glm::vec3> colors;    // NFF `f` surface colours (default white)
+  std::optional<Camera> camera;     // from the file's `v` block, if any
+  glm::vec3 background{0, 0, 0};
+  std::string source;               // file name or generator description
+};
+
+// Loads NFF (.nff), OBJ, PLY or OFF (by extension). Throws InputError with
+// file:line on malformed input, NaN/Inf coordinates or an empty scene.
+Scene LoadScene(const std::string& path);
+
+// Twice the area is zero (exactly, in float arithmetic on the cross product):
+// such triangles can never be hit by the watertight test.
+bool IsDegenerate(const Triangle& t);
+
+// The camera used when a scene has none: looks at the centre of the bounding
+// box along -z from outside it, with a 45 degree field of view that frames
+// the box (see camera.cpp for the exact rule).
+Camera AutoCamera(const Scene& scene, int width, int height);
+
+}  // namespace kdrt
