@@ -1,0 +1,46 @@
+# kdrt top-level targets: thin wrappers, as in lowRISC ibex.
+#   make demo       render the default scene (installs what is missing)
+#   make test       build and run every test (installs what is missing)
+#   make test-long  the long variants (more random vectors, larger images)
+#   make lint       verilator --lint-only -Wall on the RTL
+#   make synth      Yosys synthesis: cells and logic depth per unit and format
+#   make bench      tracing and build speed against Embree
+BUILD ?= build
+JOBS ?= $(shell nproc)
+DEMO_SCENE ?= scenes/room.nff
+KDRT := $(BUILD)/bin/kdrt
+
+.PHONY: all deps configure build demo test test-long lint synth bench clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+configure: deps
+	@test -f $(BUILD)/build.ninja || cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	@mkdir -p out
+	$(KDRT) render $(DEMO_SCENE) -o out/demo.png --hits out/demo-hits.exr --json out/demo.json
+
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+test-long: build
+	KDRT_LONG=1 ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+lint: deps
+	@bash scripts/lint.sh
+
+synth: deps
+	@bash scripts/synth.sh
+
+bench: build
+	$(BUILD)/bin/kdrt_bench
+
+clean:
+	rm -rf $(BUILD) out

@@ -1,0 +1,32 @@
+// Embree 3 as an independent oracle for tests and benchmarks: the same
+// triangles in an Embree scene, traced one ray at a time with rtcIntersect1.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "common/ray.h"
+#include "scene/scene.h"
+
+namespace kdrt {
+
+class EmbreeScene {
+ public:
+  // Builds with RTC_BUILD_QUALITY_HIGH; `threads` limits Embree's build
+  // threads (1 for single-thread comparisons).
+  EmbreeScene(const Scene& scene, int threads = 1);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  double build_seconds() const { return build_seconds_; }
+  // prim = triangle id in scene order, u/v = weights of v1/v2.
+  Hit Intersect(const Ray& ray) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  double build_seconds_ = 0;
+};
+
+}  // namespace kdrt

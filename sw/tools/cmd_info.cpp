@@ -1,0 +1,58 @@
+// kdrt info: tree statistics and memory image size of a scene.
+#include <cstdio>
+#include <fstream>
+
+#include "common/error.h"
+#include "tools/commands.h"
+#include "tools/scene_setup.h"
+#include "trace/output_file.h"
+
+namespace kdrt::cli {
+namespace {
+
+struct InfoArgs {
+  SceneArgs scene;
+  std::string json;
+  std::string image_out;
+};
+
+int Run(const InfoArgs& args) {
+  const PreparedScene p = PrepareScene(args.scene);
+  OutputSet outputs;
+  if (!args.json.empty()) {
+    nlohmann::json j = {{"command", "info"},
+                        {"scene", p.scene.source},
+                        {"triangles", p.scene.triangles.size()},
+                        {"accel", args.scene.accel},
+                        {"tree", TreeStatsJson(p.tree.stats)},
+                        {"image_bytes", p.image.size()}};
+    outputs.Add(args.json, [&](const std::string& tmp) {
+      std::ofstream f(tmp);
+      f << j.dump(2) << "\n";
+      if (!f) throw InputError(args.json, 0, "cannot write JSON stats");
+    });
+  }
+  if (!args.image_out.empty()) {
+    outputs.Add(args.image_out, [&](const std::string& tmp) {
+      std::ofstream f(tmp, std::ios::binary);
+      f.write(reinterpret_cast<const char*>(p.image.data()), static_cast<std::streamsize>(p.image.size()));
+      if (!f) throw InputError(args.image_out, 0, "cannot write memory image");
+    });
+  }
+  outputs.Commit();
+  PrintTreeStats(p);
+  return 0;
+}
+
+}  // namespace
+
+Runner AddInfoCommand(CLI::App& app) {
+  auto args = std::make_shared<InfoArgs>();
+  CLI::App* cmd = app.add_subcommand("info", "Build the kd-tree and print its statistics and the image size");
+  AddSceneOptions(*cmd, args->scene);
+  cmd->add_option("--json", args->json, "Machine-readable statistics");
+  cmd->add_option("--image", args->image_out, "Write the memory image (docs/memory-image.md) to this file");
+  return [cmd, args]() { return cmd->parsed() ? Run(*args) : -1; };
+}
+
+}  // namespace kdrt::cli

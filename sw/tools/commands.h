@@ -1,0 +1,18 @@
+// Subcommands of the `kdrt` tool. Each registers its options on a CLI11
+// subcommand and returns the function that runs it.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace kdrt::cli {
+
+using Runner = std::function<int()>;
+
+Runner AddRenderCommand(CLI::App& app);
+Runner AddInfoCommand(CLI::App& app);
+Runner AddGenCommand(CLI::App& app);
+
+}  // namespace kdrt::cli

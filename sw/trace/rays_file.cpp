@@ -1,0 +1,85 @@
+#include "trace/rays_file.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "common/error.h"
+#include "trace/output_file.h"
+
+namespace kdrt {
+namespace {
+
+constexpr char kRaysMagic[8] = {'K', 'D', 'R', 'T', 'R', 'A', 'Y', 'S'};
+constexpr uint32_t kRaysVersion = 1;
+constexpr size_t kRaysHeaderBytes = 16;
+constexpr size_t kRayBytes = 32;
+
+uint32_t ReadU32(const char* p) {
+  uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
+
+}  // namespace
+
+std::vector<Ray> ReadRaysFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open ray file");
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < kRaysHeaderBytes || std::memcmp(bytes.data(), kRaysMagic, 8) != 0) {
+    throw InputError(path, 0, "not a kdrt ray file (expected magic KDRTRAYS)");
+  }
+  const uint32_t version = ReadU32(bytes.data() + 8);
+  if (version != kRaysVersion) {
+    throw InputError(path, 0, "ray file version " + std::to_string(version) + ", expected 1");
+  }
+  const uint64_t count = ReadU32(bytes.data() + 12);
+  if (bytes.size() != kRaysHeaderBytes + count * kRayBytes) {
+    throw InputError(path, 0,
+                     "header says " + std::to_string(count) + " rays (" +
+                         std::to_string(kRaysHeaderBytes + count * kRayBytes) + " bytes) but the file has " +
+                         std::to_string(bytes.size()) + " bytes");
+  }
+  if (count == 0) throw InputError(path, 0, "ray file holds no rays");
+  std::vector<Ray> rays(count);
+  for (uint64_t i = 0; i < count; ++i) {
+    float f[8];
+    std::memcpy(f, bytes.data() + kRaysHeaderBytes + i * kRayBytes, sizeof(f));
+    auto fail = [&](const std::string& what) {
+      throw InputError(path, 0, "ray " + std::to_string(i) + ": " + what);
+    };
+    for (int k = 0; k < 6; ++k) {
+      if (!std::isfinite(f[k])) fail(std::string(k < 3 ? "origin" : "direction") + " is NaN or infinite");
+    }
+    if (f[3] == 0 && f[4] == 0 && f[5] == 0) fail("direction is zero");
+    if (std::isnan(f[6]) || std::isnan(f[7])) fail("tmin or tmax is NaN");
+    if (f[6] < 0 || std::isinf(f[6])) fail("tmin must be finite and >= 0");
+    if (f[7] < f[6]) fail("tmax is smaller than tmin");
+    rays[i].o = {f[0], f[1], f[2]};
+    rays[i].d = {f[3], f[4], f[5]};
+    rays[i].tmin = f[6];
+    rays[i].tmax = f[7];
+  }
+  return rays;
+}
+
+void WriteRaysFile(const std::string& path, const std::vector<Ray>& rays) {
+  WriteFileAtomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw InputError(path, 0, "cannot create ray file");
+    const uint32_t version = kRaysVersion, count = static_cast<uint32_t>(rays.size());
+    out.write(kRaysMagic, 8);
+    out.write(reinterpret_cast<const char*>(&version), 4);
+    out.write(reinterpret_cast<const char*>(&count), 4);
+    for (const Ray& r : rays) {
+      const float f[8] = {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmin, r.tmax};
+      out.write(reinterpret_cast<const char*>(f), sizeof(f));
+    }
+    if (!out) throw InputError(path, 0, "write failed");
+  });
+}
+
+}  // namespace kdrt

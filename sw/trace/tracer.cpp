@@ -1,0 +1,105 @@
+#include "trace/tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "common/error.h"
+#include "fp/ftz.h"
+#include "trace/traversal.h"
+
+namespace kdrt {
+
+IsectMethod ParseIsectMethod(const std::string& name) {
+  if (name == "watertight") return IsectMethod::kWatertight;
+  if (name == "moller") return IsectMethod::kMoller;
+  throw InputError("unknown intersection method '" + name + "' (expected watertight or moller)");
+}
+
+const char* IsectMethodName(IsectMethod m) { return m == IsectMethod::kWatertight ? "watertight" : "moller"; }
+
+namespace {
+
+bool IsFp32(const fp::Format& f) { return f.e == 8 && f.m == 23; }
+
+// Runs fn(arith) with the arithmetic policy for the format.
+template <class Fn>
+auto WithArith(const fp::Format& format, Fn&& fn) {
+  if (IsFp32(format)) {
+    fp::ScopedFtzDaz ftz;
+    return fn(fp::NativeF32Arith{});
+  }
+  return fn(fp::SoftArith(format));
+}
+
+}  // namespace
+
+Hit TraceOne(const ImageView& image, const Ray& ray, const TraceOptions& options, RayCounters* counters,
+             std::vector<uint32_t>* path) {
+  return WithArith(options.format, [&](const auto& a) {
+    return ToHit(a, TraceRay(a, image, ray, options.isect, counters, path));
+  });
+}
+
+std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays, const TraceOptions& options,
+                           TraceStats* stats, std::vector<RayCounters>* per_ray) {
+  std::vector<Hit> hits(rays.size());
+  std::vector<RayCounters> counters(rays.size());
+  int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::max(1, std::min<int>(threads, static_cast<int>(rays.size() / 256 + 1)));
+
+  // Rays are handed out in chunks from a shared counter; every ray's result
+  // goes to its own slot, so the output is independent of the thread count.
+  constexpr size_t kChunk = 256;
+  std::atomic<size_t> next{0};
+  std::atomic<size_t> done{0};
+  auto worker = [&]() {
+    WithArith(options.format, [&](const auto& a) {
+      for (;;) {
+        const size_t begin = next.fetch_add(kChunk);
+        if (begin >= rays.size()) break;
+        const size_t end = std::min(rays.size(), begin + kChunk);
+        for (size_t i = begin; i < end; ++i) {
+          hits[i] = ToHit(a, TraceRay(a, image, rays[i], options.isect, &counters[i]));
+        }
+        done.fetch_add(end - begin);
+      }
+      return 0;
+    });
+  };
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  if (options.progress) {
+    std::thread progress_thread([&]() {
+      while (done.load() < rays.size()) {
+        std::fprintf(stderr, "\r  traced %zu / %zu rays", done.load(), rays.size());
+        std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      }
+      std::fprintf(stderr, "\r  traced %zu / %zu rays\n", rays.size(), rays.size());
+    });
+    worker();
+    for (std::thread& t : pool) t.join();
+    progress_thread.join();
+  } else {
+    worker();
+    for (std::thread& t : pool) t.join();
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (stats) {
+    *stats = TraceStats{};
+    stats->rays = rays.size();
+    stats->seconds = seconds;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      stats->totals += counters[i];
+      if (hits[i].IsHit()) ++stats->hits;
+    }
+  }
+  if (per_ray) *per_ray = std::move(counters);
+  return hits;
+}
+
+}  // namespace kdrt

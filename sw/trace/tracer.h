@@ -1,0 +1,41 @@
+// Tracing batches of rays through a memory image in any number format.
+// fp32 runs on native floats (FTZ/DAZ set for the duration), every other
+// format on the bit-accurate soft-float model; both share one template.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/ray.h"
+#include "fp/format.h"
+#include "trace/intersect.h"
+#include "trace/memory_image.h"
+
+namespace kdrt {
+
+IsectMethod ParseIsectMethod(const std::string& name);  // "watertight", "moller"
+const char* IsectMethodName(IsectMethod m);
+
+struct TraceOptions {
+  fp::Format format{8, 23};
+  IsectMethod isect = IsectMethod::kWatertight;
+  int threads = 0;  // 0: all hardware threads; results do not depend on it
+  bool progress = false;  // a progress line on stderr for long runs
+};
+
+struct TraceStats {
+  RayCounters totals;
+  uint64_t rays = 0;
+  uint64_t hits = 0;
+  double seconds = 0;  // wall-clock time of tracing alone
+};
+
+// One ray; `path` (optional) receives the nodes fetched, in order.
+Hit TraceOne(const ImageView& image, const Ray& ray, const TraceOptions& options,
+             RayCounters* counters = nullptr, std::vector<uint32_t>* path = nullptr);
+
+std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
+                           const TraceOptions& options, TraceStats* stats = nullptr,
+                           std::vector<RayCounters>* per_ray = nullptr);
+
+}  // namespace kdrt

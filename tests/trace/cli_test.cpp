@@ -1,0 +1,203 @@
+// End-to-end tests of the `kdrt` tool: outputs, and bad input giving a clear
+// error (file, line, what), a non-zero exit and no partial output file.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "trace/images.h"
+#include "trace/rays_file.h"
+
+namespace kdrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+RunResult Run(const std::string& args) {
+  const std::string cmd = std::string(KDRT_BIN) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("kdrt_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string Write(const std::string& name, const std::string& text) const {
+    std::ofstream(Path(name)) << text;
+    return Path(name);
+  }
+  // Nothing but the inputs is left in the directory.
+  size_t FileCount() const {
+    size_t n = 0;
+    for (const auto& e : fs::directory_iterator(dir_)) n += e.is_regular_file();
+    return n;
+  }
+  fs::path dir_;
+};
+
+TEST_F(Cli, HelpOnEveryCommand) {
+  for (const char* cmd : {"", "render", "info", "gen"}) {
+    const RunResult r = Run(std::string(cmd) + " --help");
+    EXPECT_EQ(r.exit_code, 0) << cmd;
+    EXPECT_NE(r.output.find("Usage"), std::string::npos) << cmd;
+  }
+}
+
+TEST_F(Cli, RenderWritesImageHitsAndJson) {
+  const RunResult r = Run("render gen:room:500 --res 40x30 -o " + Path("a.png") + " --hits " + Path("a.exr") +
+                          " --json " + Path("a.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Mrays/s"), std::string::npos);
+  int w = 0, h = 0;
+  const std::vector<Hit> hits = ReadHitBuffer(Path("a.exr"), &w, &h);
+  EXPECT_EQ(w, 40);
+  EXPECT_EQ(h, 30);
+  size_t hit_count = 0;
+  for (const Hit& hit : hits) {
+    hit_count += hit.IsHit();
+    if (!hit.IsHit()) EXPECT_TRUE(std::isinf(hit.t));
+  }
+  EXPECT_GT(hit_count, hits.size() / 2);  // the camera looks into a closed room
+  std::ifstream json(Path("a.json"));
+  std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"hits\": " + std::to_string(hit_count)), std::string::npos) << text;
+  EXPECT_TRUE(fs::exists(Path("a.png")));
+}
+
+TEST_F(Cli, RayFileHitBufferIsInInputOrder) {
+  std::vector<Ray> rays;
+  for (int i = 0; i < 10; ++i) rays.push_back(Ray{{0.1f * i, 0.5f, 5.0f}, {0, 0, -1}, 0.0f, INFINITY});
+  WriteRaysFile(Path("r.bin"), rays);
+  const std::string nff = Write("q.nff", "p 4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n");
+  const RunResult r = Run("render " + nff + " --rays " + Path("r.bin") + " --hits " + Path("r.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  int w = 0, h = 0;
+  const std::vector<Hit> hits = ReadHitBuffer(Path("r.exr"), &w, &h);
+  ASSERT_EQ(w, 10);
+  ASSERT_EQ(h, 1);
+  for (int i = 0; i < 10; ++i) {
+    // x = 0.1 i: inside [0, 1] for i <= 9 (x = 0.9 at most), t = 5.
+    EXPECT_TRUE(hits[i].IsHit()) << i;
+    EXPECT_EQ(hits[i].t, 5.0f) << i;
+  }
+}
+
+TEST_F(Cli, FormatsRenderAndFp32EqualsDefault) {
+  ASSERT_EQ(Run("render gen:balls:800 --res 32x32 -q --hits " + Path("d.exr")).exit_code, 0);
+  ASSERT_EQ(Run("render gen:balls:800 --res 32x32 -q --format fp32 --hits " + Path("f.exr")).exit_code, 0);
+  ASSERT_EQ(Run("render gen:balls:800 --res 32x32 -q --format fp16 --hits " + Path("h.exr")).exit_code, 0);
+  int w, h;
+  const auto d = ReadHitBuffer(Path("d.exr"), &w, &h), f = ReadHitBuffer(Path("f.exr"), &w, &h);
+  ASSERT_EQ(d.size(), f.size());
+  for (size_t i = 0; i < d.size(); ++i) EXPECT_EQ(std::memcmp(&d[i], &f[i], sizeof(Hit)), 0);
+}
+
+struct BadInput {
+  const char* name;
+  const char* file_text;  // written to bad.nff
+  const char* extra_args;
+  const char* expect;     // substring of the error
+};
+
+TEST_F(Cli, BadInputGivesClearErrorAndNoOutput) {
+  const BadInput cases[] = {
+      {"unknown keyword", "p 3\n0 0 0\n1 0 0\n0 1 0\nzz 1 2\n", "", "bad.nff:5"},
+      {"nan coordinate", "p 3\n0 0 0\n1 nan 0\n0 1 0\n", "", "bad.nff:3"},
+      {"inf coordinate", "p 3\n0 0 0\n1 0 0\n0 inf 0\n", "", "bad.nff:4"},
+      {"truncated polygon", "p 4\n0 0 0\n1 0 0\n0 1 0\n", "", "bad.nff"},
+      {"empty scene", "# nothing here\n", "", "bad.nff"},
+      {"bad format", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--format fp99", "fp99"},
+      {"bad accel", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--accel octree", "octree"},
+      {"bad res", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--res 12by4", "--res"},
+      {"bad isect", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--isect plucker", "plucker"},
+      {"missing ray file", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--rays nonexistent.bin", "nonexistent.bin"},
+  };
+  for (const BadInput& c : cases) {
+    const std::string scene = Write("bad.nff", c.file_text);
+    const RunResult r = Run("render " + scene + " " + c.extra_args + " -o " + Path("out.png") + " --hits " +
+                            Path("out.exr") + " --json " + Path("out.json"));
+    EXPECT_NE(r.exit_code, 0) << c.name;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find("error"), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_EQ(FileCount(), 1u) << c.name << ": output left behind";
+  }
+}
+
+TEST_F(Cli, MissingSceneAndUnknownOption) {
+  RunResult r = Run("render " + Path("nope.nff") + " -o " + Path("x.png"));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("nope.nff"), std::string::npos) << r.output;
+  r = Run("render gen:room:100 --no-such-option");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("no-such-option"), std::string::npos) << r.output;
+  EXPECT_EQ(FileCount(), 0u);
+}
+
+TEST_F(Cli, BadRayFiles) {
+  const std::string scene = Write("q.nff", "p 3\n0 0 0\n1 0 0\n0 1 0\n");
+  auto write_raw = [&](const std::string& bytes) {
+    std::ofstream(Path("r.bin"), std::ios::binary) << bytes;
+  };
+  auto header = [](uint32_t version, uint32_t count) {
+    std::string h = "KDRTRAYS";
+    h.append(reinterpret_cast<const char*>(&version), 4);
+    h.append(reinterpret_cast<const char*>(&count), 4);
+    return h;
+  };
+  auto ray = [](std::array<float, 8> f) { return std::string(reinterpret_cast<const char*>(f.data()), 32); };
+  const float nan = NAN, inf = INFINITY;
+  const std::pair<std::string, std::string> cases[] = {
+      {"NOTRAYS!" + std::string(8, '\0'), "magic"},
+      {header(2, 1) + ray({0, 0, 1, 0, 0, -1, 0, inf}), "version"},
+      {header(1, 2) + ray({0, 0, 1, 0, 0, -1, 0, inf}), "bytes"},
+      {header(1, 1) + ray({0, nan, 1, 0, 0, -1, 0, inf}), "ray 0: origin"},
+      {header(1, 2) + ray({0, 0, 1, 0, 0, -1, 0, inf}) + ray({0, 0, 1, 0, inf, -1, 0, inf}), "ray 1: direction"},
+      {header(1, 1) + ray({0, 0, 1, 0, 0, 0, 0, inf}), "zero"},
+      {header(1, 1) + ray({0, 0, 1, 0, 0, -1, 5, 1}), "tmax"},
+  };
+  for (const auto& [bytes, expect] : cases) {
+    write_raw(bytes);
+    const RunResult r = Run("render " + scene + " --rays " + Path("r.bin") + " --hits " + Path("o.exr"));
+    EXPECT_NE(r.exit_code, 0) << expect;
+    EXPECT_NE(r.output.find(expect), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("r.bin"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(Path("o.exr")));
+  }
+}
+
+TEST_F(Cli, InfoAndGen) {
+  RunResult r = Run("gen tetra --size 300 -o " + Path("t.nff"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = Run("info " + Path("t.nff") + " --json " + Path("t.json") + " --image " + Path("t.img"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("memory image"), std::string::npos);
+  EXPECT_NE(r.output.find("SAH cost"), std::string::npos);
+  EXPECT_GT(fs::file_size(Path("t.img")), 128u);
+}
+
+}  // namespace
+}  // namespace kdrt

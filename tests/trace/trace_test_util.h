@@ -1,0 +1,65 @@
+// Shared helpers for the trace tests: scenes, camera rays, brute force.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "accel/kdtree.h"
+#include "common/ray.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+#include "scenes/gen/generators.h"
+#include "trace/memory_image.h"
+#include "trace/tracer.h"
+#include "trace/traversal.h"
+
+namespace kdrt::testing {
+
+inline std::vector<Ray> CameraRays(const Scene& scene, int res) {
+  Camera cam = scene.camera ? *scene.camera : AutoCamera(scene, res, res);
+  cam.width = cam.height = res;
+  std::vector<Ray> rays;
+  for (int y = 0; y < res; ++y) {
+    for (int x = 0; x < res; ++x) {
+      const CameraRay cr = PrimaryRay(cam, x, y);
+      rays.push_back(Ray{cr.o, cr.d, cr.tmin, INFINITY});
+    }
+  }
+  return rays;
+}
+
+// A scene with its tree and image, kept together so views stay valid.
+struct Prepared {
+  Scene scene;
+  KdTree tree;
+  std::vector<uint8_t> bytes;
+  explicit Prepared(Scene s, BuildOptions options = {})
+      : scene(std::move(s)), tree(BuildKdTree(scene, options)), bytes(BuildMemoryImage(scene, tree)) {}
+  ImageView view() const { return ImageView(bytes); }
+};
+
+// Every triangle tested, same test and same closest-hit rule as the tree.
+template <class A>
+Hit BruteForce(const A& a, const ImageView& image, const Ray& ray) {
+  const RaySetup<A> r = SetupRay(a, ray);
+  TraceResult<A> best;
+  best.t = r.tmax;
+  for (uint32_t id = 0; id < image.header().tri_count; ++id) {
+    const Candidate<A> c = IntersectWatertight(a, r, image.triangles()[id], r.tmax);
+    if (c.hit && (a.Lt(c.t, best.t) || (a.Eq(c.t, best.t) && id < best.prim))) {
+      best.t = c.t;
+      best.u = c.u;
+      best.v = c.v;
+      best.prim = id;
+    }
+  }
+  return ToHit(a, best);
+}
+
+inline bool SameBits(const Hit& a, const Hit& b) {
+  return a.prim == b.prim && std::memcmp(&a.t, &b.t, 4) == 0 && std::memcmp(&a.u, &b.u, 4) == 0 &&
+         std::memcmp(&a.v, &b.v, 4) == 0;
+}
+
+}  // namespace kdrt::testing
