@@ -1,0 +1,126 @@
+// rt_clip_unit: clips a ray's [tmin, tmax] to the scene box, fully pipelined,
+// valid/ready with a global stall. Exactly the model's operations
+// (sw/trace/traversal.h, docs/dataflow.md section 1):
+//   per axis i: near = sign(inv[i]) ? max[i] : min[i]; far = the other
+//               tn = (load(near) - o[i]) * inv[i]; tf = (load(far) - o[i]) * inv[i]
+//   t0 = tmin; t1 = tmax; for i = x, y, z: if t0 < tn: t0 = tn; if tf < t1: t1 = tf
+//   miss = t1 < t0
+// Latency = FpFromF32Latency + FpAddLatency + FpMulLatency cycles.
+`default_nettype none
+// Unused outputs of the shared fp_cmp are left open on purpose.
+/* verilator lint_off PINCONNECTEMPTY */
+
+module rt_clip_unit #(
+  parameter int unsigned E = 8,
+  parameter int unsigned M = 23,
+  parameter int unsigned TagWidth = 4,
+  localparam int unsigned W = E + M + 1
+) (
+  input  logic                clk_i,
+  input  logic                rst_ni,
+  input  logic [95:0]         bounds_min_i,  // fp32 x, y, z
+  input  logic [95:0]         bounds_max_i,
+  input  logic                in_valid_i,
+  output logic                in_ready_o,
+  input  logic [TagWidth-1:0] in_tag_i,
+  input  logic [3*W-1:0]      in_o_i,
+  input  logic [3*W-1:0]      in_inv_i,
+  input  logic [W-1:0]        in_tmin_i,
+  input  logic [W-1:0]        in_tmax_i,
+  output logic                out_valid_o,
+  input  logic                out_ready_i,
+  output logic [TagWidth-1:0] out_tag_o,
+  output logic [W-1:0]        out_t0_o,
+  output logic [W-1:0]        out_t1_o,
+  output logic                out_miss_o
+);
+
+  localparam int unsigned LConv = kdrt_fp_pkg::FpFromF32Latency;
+  localparam int unsigned LAdd = kdrt_fp_pkg::FpAddLatency;
+  localparam int unsigned LMul = kdrt_fp_pkg::FpMulLatency;
+
+  logic en;
+  assign en = !out_valid_o || out_ready_i;
+  assign in_ready_o = en;
+
+  logic [5:0]   v_conv, v_sub, v_mul;
+  logic [W-1:0] plane [6];
+  logic [W-1:0] o_conv [3];
+  logic [W-1:0] inv_conv [3];
+  logic [W-1:0] inv_sub [3];
+  logic [W-1:0] diff [6];
+  logic [W-1:0] tdist [6];  // 2i: near distance on axis i, 2i+1: far
+
+  // o and inv travel beside the conversion and the subtraction.
+  for (genvar i = 0; i < 3; i++) begin : g_axis
+    logic         neg;
+    logic [31:0]  near_f32, far_f32;
+    assign neg = in_inv_i[W*i + W - 1];
+    assign near_f32 = neg ? bounds_max_i[32*i +: 32] : bounds_min_i[32*i +: 32];
+    assign far_f32 = neg ? bounds_min_i[32*i +: 32] : bounds_max_i[32*i +: 32];
+
+    fp_from_f32 #(.E(E), .M(M)) u_near (
+      .clk_i, .rst_ni, .en_i(en), .valid_i(in_valid_i), .f32_i(near_f32),
+      .valid_o(v_conv[2*i]), .res_o(plane[2*i])
+    );
+    fp_from_f32 #(.E(E), .M(M)) u_far (
+      .clk_i, .rst_ni, .en_i(en), .valid_i(in_valid_i), .f32_i(far_f32),
+      .valid_o(v_conv[2*i+1]), .res_o(plane[2*i+1])
+    );
+    rt_delay #(.Width(2 * W), .Depth(LConv)) u_d1 (
+      .clk_i, .en_i(en), .d_i({in_o_i[W*i +: W], in_inv_i[W*i +: W]}), .q_o({o_conv[i], inv_conv[i]})
+    );
+    rt_delay #(.Width(W), .Depth(LAdd)) u_d2 (
+      .clk_i, .en_i(en), .d_i(inv_conv[i]), .q_o(inv_sub[i])
+    );
+    for (genvar k = 0; k < 2; k++) begin : g_side
+      fp_add #(.E(E), .M(M)) u_sub (
+        .clk_i, .rst_ni, .en_i(en), .valid_i(v_conv[2*i+k]), .a_i(plane[2*i+k]), .b_i(o_conv[i]),
+        .sub_i(1'b1), .valid_o(v_sub[2*i+k]), .res_o(diff[2*i+k])
+      );
+      fp_mul #(.E(E), .M(M)) u_mul (
+        .clk_i, .rst_ni, .en_i(en), .valid_i(v_sub[2*i+k]), .a_i(diff[2*i+k]), .b_i(inv_sub[i]),
+        .valid_o(v_mul[2*i+k]), .res_o(tdist[2*i+k])
+      );
+    end
+  end
+
+  logic [W-1:0] tmin_q, tmax_q;
+  rt_delay #(.Width(TagWidth + 2 * W), .Depth(LConv + LAdd + LMul)) u_side (
+    .clk_i, .en_i(en), .d_i({in_tag_i, in_tmin_i, in_tmax_i}), .q_o({out_tag_o, tmin_q, tmax_q})
+  );
+  // All six distances advance together; one valid bit speaks for them.
+  assign out_valid_o = v_mul[0];
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic unused_valid;
+  assign unused_valid = ^v_mul[5:1];
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  // The compare-select chain: x, then y, then z.
+  logic [W-1:0] t0_chain [4] /* verilator split_var */;
+  logic [W-1:0] t1_chain [4] /* verilator split_var */;
+  assign t0_chain[0] = tmin_q;
+  assign t1_chain[0] = tmax_q;
+  for (genvar i = 0; i < 3; i++) begin : g_chain
+    logic near_later, far_earlier;
+    fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_near (
+      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(t0_chain[i]), .b_i(tdist[2*i]),
+      .valid_o(), .lt_o(near_later), .le_o(), .eq_o(), .min_o(), .max_o()
+    );
+    fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_far (
+      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(tdist[2*i+1]), .b_i(t1_chain[i]),
+      .valid_o(), .lt_o(far_earlier), .le_o(), .eq_o(), .min_o(), .max_o()
+    );
+    assign t0_chain[i+1] = near_later ? tdist[2*i] : t0_chain[i];
+    assign t1_chain[i+1] = far_earlier ? tdist[2*i+1] : t1_chain[i];
+  end
+  assign out_t0_o = t0_chain[3];
+  assign out_t1_o = t1_chain[3];
+  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_miss (
+    .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(out_t1_o), .b_i(out_t0_o),
+    .valid_o(), .lt_o(out_miss_o), .le_o(), .eq_o(), .min_o(), .max_o()
+  );
+
+endmodule
+
+`default_nettype wire

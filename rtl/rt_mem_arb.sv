@@ -1,0 +1,65 @@
+// rt_mem_arb: shares the core's one memory port among its caches.
+//
+// Round-robin over the requesting caches; a request's tag is the cache's
+// number (bits [3:2]) and the beat within its line (bits [1:0]), and the
+// response is routed back by it. Responses are never refused.
+`default_nettype none
+
+module rt_mem_arb #(
+  parameter int unsigned N = 3,
+  parameter int unsigned AddrWidth = 32
+) (
+  input  logic                   clk_i,
+  input  logic                   rst_ni,
+  // cache side
+  input  logic [N-1:0]           req_valid_i,
+  output logic [N-1:0]           req_ready_o,
+  input  logic [N*AddrWidth-1:0] req_addr_i,
+  input  logic [N*2-1:0]         req_beat_i,
+  output logic [N-1:0]           resp_valid_o,
+  output logic [1:0]             resp_beat_o,
+  output logic [127:0]           resp_data_o,
+  // memory side
+  output logic                   mem_req_valid_o,
+  input  logic                   mem_req_ready_i,
+  output logic [AddrWidth-1:0]   mem_req_addr_o,
+  output logic [7:0]             mem_req_tag_o,
+  input  logic                   mem_resp_valid_i,
+  input  logic [7:0]             mem_resp_tag_i,
+  input  logic [127:0]           mem_resp_data_i
+);
+
+  localparam int unsigned IdxW = (N > 1) ? $clog2(N) : 1;
+
+  logic            gnt_valid;
+  logic [IdxW-1:0] gnt;
+
+  rt_rr_arb #(.N(N)) u_arb (
+    .clk_i,
+    .rst_ni,
+    .req_i  (req_valid_i),
+    .ack_i  (mem_req_ready_i),
+    .valid_o(gnt_valid),
+    .idx_o  (gnt)
+  );
+
+  assign mem_req_valid_o = gnt_valid;
+  assign mem_req_addr_o = req_addr_i[AddrWidth*gnt +: AddrWidth];
+  assign mem_req_tag_o = {4'd0, 2'(gnt), req_beat_i[2*gnt +: 2]};
+
+  always_comb begin
+    req_ready_o = '0;
+    resp_valid_o = '0;
+    if (gnt_valid) req_ready_o[gnt] = mem_req_ready_i;
+    if (mem_resp_valid_i && 32'(mem_resp_tag_i[3:2]) < N) resp_valid_o[mem_resp_tag_i[3:2]] = 1'b1;
+  end
+  assign resp_beat_o = mem_resp_tag_i[1:0];
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic unused_tag;
+  assign unused_tag = ^mem_resp_tag_i[7:4];
+  /* verilator lint_on UNUSEDSIGNAL */
+  assign resp_data_o = mem_resp_data_i;
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,157 @@
+// rt_trav_unit: the kd-tree traversal step, fully pipelined (one inner node
+// per cycle), valid/ready with a global stall.
+//
+// For an inner node it computes, in the datapath format (E, M), exactly the
+// model's operations (sw/trace/traversal.h, docs/dataflow.md section 2):
+//   split = load(split word)                      fp_from_f32
+//   ts    = (split - o[a]) * inv[a]               fp_add (sub), fp_mul
+//   below_first = o[a] < split or (o[a] == split and d[a] <= 0)
+//   action: first only  if t1 < ts or ts <= 0
+//           second only if ts < t0
+//           push (second, ts, t1) and go first with t1 = ts otherwise
+// Latency = FpFromF32Latency + FpAddLatency + FpMulLatency cycles.
+`default_nettype none
+// Unused outputs of the shared fp_cmp are left open on purpose.
+/* verilator lint_off PINCONNECTEMPTY */
+
+module rt_trav_unit #(
+  parameter int unsigned E = 8,
+  parameter int unsigned M = 23,
+  parameter int unsigned TagWidth = 4,
+  parameter int unsigned NodeIdxWidth = 24,
+  localparam int unsigned W = E + M + 1
+) (
+  input  logic                    clk_i,
+  input  logic                    rst_ni,
+  input  logic                    in_valid_i,
+  output logic                    in_ready_o,
+  input  logic [TagWidth-1:0]     in_tag_i,
+  input  logic [31:0]             in_split_i,   // fp32 bits from the node
+  input  logic [NodeIdxWidth-1:0] in_below_i,   // node index + 1
+  input  logic [NodeIdxWidth-1:0] in_above_i,
+  input  logic [W-1:0]            in_o_i,       // ray origin on the split axis
+  input  logic [W-1:0]            in_d_i,       // ray direction on the split axis
+  input  logic [W-1:0]            in_inv_i,     // 1 / d on the split axis
+  input  logic [W-1:0]            in_t0_i,
+  input  logic [W-1:0]            in_t1_i,
+  output logic                    out_valid_o,
+  input  logic                    out_ready_i,
+  output logic [TagWidth-1:0]     out_tag_o,
+  output logic [1:0]              out_action_o, // 0 first, 1 second, 2 push
+  output logic [NodeIdxWidth-1:0] out_first_o,
+  output logic [NodeIdxWidth-1:0] out_second_o,
+  output logic [W-1:0]            out_ts_o,
+  output logic [W-1:0]            out_t0_o,
+  output logic [W-1:0]            out_t1_o
+);
+
+  localparam int unsigned LConv = kdrt_fp_pkg::FpFromF32Latency;
+  localparam int unsigned LAdd = kdrt_fp_pkg::FpAddLatency;
+  localparam int unsigned LMul = kdrt_fp_pkg::FpMulLatency;
+  /* verilator lint_off UNUSEDPARAM */
+  localparam int unsigned Latency = LConv + LAdd + LMul;
+  /* verilator lint_on UNUSEDPARAM */
+
+  logic en;
+  assign en = !out_valid_o || out_ready_i;
+  assign in_ready_o = en;
+
+  // Stage group 1: load the split.
+  logic         v1;
+  logic [W-1:0] split;
+  fp_from_f32 #(.E(E), .M(M)) u_conv (
+    .clk_i, .rst_ni, .en_i(en), .valid_i(in_valid_i), .f32_i(in_split_i),
+    .valid_o(v1), .res_o(split)
+  );
+  localparam int unsigned SideW = TagWidth + 2 * NodeIdxWidth + 5 * W;
+  logic [SideW-1:0] side0, side1;
+  assign side0 = {in_tag_i, in_below_i, in_above_i, in_o_i, in_d_i, in_inv_i, in_t0_i, in_t1_i};
+  rt_delay #(.Width(SideW), .Depth(LConv)) u_side1 (.clk_i, .en_i(en), .d_i(side0), .q_o(side1));
+
+  logic [TagWidth-1:0]     tag1;
+  logic [NodeIdxWidth-1:0] below1, above1;
+  logic [W-1:0]            o1, d1, inv1, t01, t11;
+  assign {tag1, below1, above1, o1, d1, inv1, t01, t11} = side1;
+
+  // Which child is near: decided now, carried along.
+  logic o_lt, o_eq, d_le0, below_first1;
+  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_o (
+    .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(o1), .b_i(split),
+    .valid_o(), .lt_o(o_lt), .le_o(), .eq_o(o_eq), .min_o(), .max_o()
+  );
+  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_d (
+    .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(d1), .b_i('0),
+    .valid_o(), .lt_o(), .le_o(d_le0), .eq_o(), .min_o(), .max_o()
+  );
+  assign below_first1 = o_lt || (o_eq && d_le0);
+
+  // Stage group 2: split - o.
+  logic         v2;
+  logic [W-1:0] diff;
+  fp_add #(.E(E), .M(M)) u_sub (
+    .clk_i, .rst_ni, .en_i(en), .valid_i(v1), .a_i(split), .b_i(o1), .sub_i(1'b1),
+    .valid_o(v2), .res_o(diff)
+  );
+  localparam int unsigned Side2W = TagWidth + 2 * NodeIdxWidth + 3 * W + 1;
+  logic [Side2W-1:0] side2;
+  rt_delay #(.Width(Side2W), .Depth(LAdd)) u_side2 (
+    .clk_i, .en_i(en), .d_i({tag1, below1, above1, inv1, t01, t11, below_first1}), .q_o(side2)
+  );
+  logic [TagWidth-1:0]     tag2;
+  logic [NodeIdxWidth-1:0] below2, above2;
+  logic [W-1:0]            inv2, t02, t12;
+  logic                    bf2;
+  assign {tag2, below2, above2, inv2, t02, t12, bf2} = side2;
+
+  // Stage group 3: ts = diff * inv.
+  fp_mul #(.E(E), .M(M)) u_mul (
+    .clk_i, .rst_ni, .en_i(en), .valid_i(v2), .a_i(diff), .b_i(inv2),
+    .valid_o(out_valid_o), .res_o(out_ts_o)
+  );
+  localparam int unsigned Side3W = TagWidth + 2 * NodeIdxWidth + 2 * W + 1;
+  logic [NodeIdxWidth-1:0] below3, above3;
+  logic                    bf3;
+  rt_delay #(.Width(Side3W), .Depth(LMul)) u_side3 (
+    .clk_i, .en_i(en), .d_i({tag2, below2, above2, t02, t12, bf2}),
+    .q_o({out_tag_o, below3, above3, out_t0_o, out_t1_o, bf3})
+  );
+
+  // Decision on the pipeline's output.
+  logic t1_lt_ts, ts_le0, ts_lt_t0;
+  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_far (
+    .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(out_t1_o), .b_i(out_ts_o),
+    .valid_o(), .lt_o(t1_lt_ts), .le_o(), .eq_o(), .min_o(), .max_o()
+  );
+  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_zero (
+    .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(out_ts_o), .b_i('0),
+    .valid_o(), .lt_o(), .le_o(ts_le0), .eq_o(), .min_o(), .max_o()
+  );
+  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_near (
+    .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(out_ts_o), .b_i(out_t0_o),
+    .valid_o(), .lt_o(ts_lt_t0), .le_o(), .eq_o(), .min_o(), .max_o()
+  );
+  assign out_first_o = bf3 ? below3 : above3;
+  assign out_second_o = bf3 ? above3 : below3;
+  assign out_action_o = (t1_lt_ts || ts_le0) ? 2'd0 : (ts_lt_t0 ? 2'd1 : 2'd2);
+
+`ifndef SYNTHESIS
+  // picorv32's stream rule on the output: valid holds and the payload stays
+  // put until ready.
+  logic             stalled_q;
+  logic [W+1:0]     held_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) stalled_q <= 1'b0;
+    else stalled_q <= out_valid_o && !out_ready_i;
+  end
+  always_ff @(posedge clk_i) begin
+    held_q <= {out_action_o, out_ts_o};
+    if (stalled_q) begin
+      assert (out_valid_o && held_q == {out_action_o, out_ts_o})
+        else $error("rt_trav_unit: output changed while stalled");
+    end
+  end
+`endif
+
+endmodule
+
+`default_nettype wire
