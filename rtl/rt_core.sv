@@ -612,6 +612,13 @@ module rt_core #(
     .mem_resp_data_i
   );
 
+  // Address bits below a line, the record's id and padding words, and id
+  // bits above TriIdxWidth (zero for a scene the parameters fit) are unused.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic unused_bits;
+  assign unused_bits = ^{fetch_addr, node_addr, trav_t0, entry_off, entry_id, tri_line, isect_id};
+  /* verilator lint_on UNUSEDSIGNAL */
+
   // ------------------------------------------------------------ performance events
   logic any_progress, waiting_mem;
   assign any_progress = trav_fire || list_req_fire || list_resp_fire || tri_resp_fire || exit_fire ||
