@@ -32,6 +32,59 @@ struct TraceResult {
   uint32_t prim = kNoPrim;
 };
 
+// The ray's [tmin, tmax] clipped to the scene box (the clip unit,
+// rtl/rt_clip_unit.sv). A slab whose distances are NaN (ray parallel to and
+// in the slab's plane) does not narrow the interval.
+template <class A>
+struct BoxClip {
+  typename A::T t0, t1;
+  bool miss;
+};
+
+template <class A>
+BoxClip<A> ClipToBox(const A& a, const RaySetup<A>& r, const float bounds_min[3], const float bounds_max[3]) {
+  using T = typename A::T;
+  BoxClip<A> c{r.tmin, r.tmax, false};
+  for (int i = 0; i < 3; ++i) {
+    const bool neg = a.IsNeg(r.inv_d[i]);
+    const T near_plane = a.Load(neg ? bounds_max[i] : bounds_min[i]);
+    const T far_plane = a.Load(neg ? bounds_min[i] : bounds_max[i]);
+    const T tn = a.Mul(a.Sub(near_plane, r.o[i]), r.inv_d[i]);
+    const T tf = a.Mul(a.Sub(far_plane, r.o[i]), r.inv_d[i]);
+    if (a.Lt(c.t0, tn)) c.t0 = tn;
+    if (a.Lt(tf, c.t1)) c.t1 = tf;
+  }
+  c.miss = a.Lt(c.t1, c.t0);
+  return c;
+}
+
+// One inner node (the traversal unit, rtl/rt_trav_unit.sv).
+enum class TraversalAction { kFirst, kSecond, kPush };
+
+template <class A>
+struct TraversalStep {
+  typename A::T t_split;
+  bool below_first;
+  TraversalAction action;  // kPush: push (second, t_split, t1), go first with t1 = t_split
+};
+
+template <class A>
+TraversalStep<A> StepInnerNode(const A& a, float split_fp32, typename A::T o, typename A::T d,
+                               typename A::T inv_d, typename A::T t0, typename A::T t1) {
+  TraversalStep<A> s;
+  const typename A::T split = a.Load(split_fp32);
+  s.t_split = a.Mul(a.Sub(split, o), inv_d);
+  s.below_first = a.Lt(o, split) || (a.Eq(o, split) && a.Le(d, a.Zero()));
+  if (a.Lt(t1, s.t_split) || a.Le(s.t_split, a.Zero())) {
+    s.action = TraversalAction::kFirst;
+  } else if (a.Lt(s.t_split, t0)) {
+    s.action = TraversalAction::kSecond;
+  } else {
+    s.action = TraversalAction::kPush;
+  }
+  return s;
+}
+
 // Converts a datapath result to the fp32 hit record (exact widening).
 template <class A>
 Hit ToHit(const A& a, const TraceResult<A>& r) {
@@ -54,19 +107,10 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
   best.t = r.tmax;
   best.u = best.v = a.Zero();
 
-  // Clip [tmin, tmax] to the scene box. A slab whose distances are NaN (ray
-  // parallel to and in the slab's plane) does not narrow the interval.
   const img::Header& h = image.header();
-  T t0 = r.tmin, t1 = r.tmax;
-  for (int i = 0; i < 3; ++i) {
-    const T near_plane = a.IsNeg(r.inv_d[i]) ? a.Load(h.bounds_max[i]) : a.Load(h.bounds_min[i]);
-    const T far_plane = a.IsNeg(r.inv_d[i]) ? a.Load(h.bounds_min[i]) : a.Load(h.bounds_max[i]);
-    const T tn = a.Mul(a.Sub(near_plane, r.o[i]), r.inv_d[i]);
-    const T tf = a.Mul(a.Sub(far_plane, r.o[i]), r.inv_d[i]);
-    if (a.Lt(t0, tn)) t0 = tn;
-    if (a.Lt(tf, t1)) t1 = tf;
-  }
-  if (a.Lt(t1, t0)) return best;
+  const BoxClip<A> clip = ClipToBox(a, r, h.bounds_min, h.bounds_max);
+  if (clip.miss) return best;
+  T t0 = clip.t0, t1 = clip.t1;
 
   struct Entry {
     uint32_t node;
@@ -83,21 +127,18 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
     if (counters) ++counters->nodes;
     if (path) path->push_back(node);
     if (!n.IsLeaf()) {
-      const int axis = n.Axis();
-      const T split = a.Load(n.Split());
-      const T t_split = a.Mul(a.Sub(split, r.o[axis]), r.inv_d[axis]);
-      const bool below_first =
-          a.Lt(r.o[axis], split) || (a.Eq(r.o[axis], split) && a.Le(r.d[axis], a.Zero()));
-      const uint32_t first = below_first ? node + 1 : n.AboveChild();
-      const uint32_t second = below_first ? n.AboveChild() : node + 1;
-      if (a.Lt(t1, t_split) || a.Le(t_split, a.Zero())) {
+      const TraversalStep<A> step =
+          StepInnerNode(a, n.Split(), r.o[n.Axis()], r.d[n.Axis()], r.inv_d[n.Axis()], t0, t1);
+      const uint32_t first = step.below_first ? node + 1 : n.AboveChild();
+      const uint32_t second = step.below_first ? n.AboveChild() : node + 1;
+      if (step.action == TraversalAction::kFirst) {
         node = first;
-      } else if (a.Lt(t_split, t0)) {
+      } else if (step.action == TraversalAction::kSecond) {
         node = second;
       } else {
-        stack[sp++] = Entry{second, t_split, t1};
+        stack[sp++] = Entry{second, step.t_split, t1};
         node = first;
-        t1 = t_split;
+        t1 = step.t_split;
       }
       continue;
     }
