@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
       const KdTree tree = BuildKdTree(scene);
       const std::vector<uint8_t> bytes = BuildMemoryImage(scene, tree);
       const ImageView image(bytes);
-      const EmbreeScene embree(scene, 1);
+      const EmbreeScene embree(scene, 1, /*robust=*/false);
 
       Camera cam = scene.camera ? *scene.camera : AutoCamera(scene, res, res);
       cam.width = cam.height = res;

@@ -4,6 +4,7 @@
 //   per axis i: near = sign(inv[i]) ? max[i] : min[i]; far = the other
 //               tn = (load(near) - o[i]) * inv[i]; tf = (load(far) - o[i]) * inv[i]
 //   t0 = tmin; t1 = tmax; for i = x, y, z: if t0 < tn: t0 = tn; if tf < t1: t1 = tf
+//   t0 = nudge_down(t0); t1 = nudge_up(t1)      (conservative cells, fp_nudge)
 //   miss = t1 < t0
 // Latency = FpFromF32Latency + FpAddLatency + FpMulLatency cycles.
 `default_nettype none
@@ -14,6 +15,7 @@ module rt_clip_unit #(
   parameter int unsigned E = 8,
   parameter int unsigned M = 23,
   parameter int unsigned TagWidth = 4,
+  parameter int unsigned SlackUlps = 4,  // kTraversalSlackUlps (sw/trace/traversal.h)
   localparam int unsigned W = E + M + 1
 ) (
   input  logic                clk_i,
@@ -114,8 +116,17 @@ module rt_clip_unit #(
     assign t0_chain[i+1] = near_later ? tdist[2*i] : t0_chain[i];
     assign t1_chain[i+1] = far_earlier ? tdist[2*i+1] : t1_chain[i];
   end
-  assign out_t0_o = t0_chain[3];
-  assign out_t1_o = t1_chain[3];
+  logic [W-1:0] t0_up_unused, t1_down_unused;
+  fp_nudge #(.E(E), .M(M), .K(SlackUlps)) u_nudge_t0 (
+    .a_i(t0_chain[3]), .up_o(t0_up_unused), .down_o(out_t0_o)
+  );
+  fp_nudge #(.E(E), .M(M), .K(SlackUlps)) u_nudge_t1 (
+    .a_i(t1_chain[3]), .up_o(out_t1_o), .down_o(t1_down_unused)
+  );
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic unused_nudge;
+  assign unused_nudge = ^{t0_up_unused, t1_down_unused};
+  /* verilator lint_on UNUSEDSIGNAL */
   fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_miss (
     .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(out_t1_o), .b_i(out_t0_o),
     .valid_o(), .lt_o(out_miss_o), .le_o(), .eq_o(), .min_o(), .max_o()

@@ -220,7 +220,7 @@ module rt_core #(
   logic [ThW-1:0]          trav_tag;
   logic [1:0]              trav_action;
   logic [NodeIdxWidth-1:0] trav_first, trav_second;
-  logic [W-1:0]            trav_ts, trav_t0, trav_t1;
+  logic [W-1:0]            trav_ts, trav_ts_lo, trav_ts_hi, trav_t0, trav_t1;
   assign node_resp_ready = node_is_leaf || trav_in_ready;
   assign node_resp_fire = node_resp_valid && node_resp_ready;
   assign trav_fire = node_resp_fire && !node_is_leaf;
@@ -245,6 +245,8 @@ module rt_core #(
     .out_first_o (trav_first),
     .out_second_o(trav_second),
     .out_ts_o    (trav_ts),
+    .out_ts_lo_o (trav_ts_lo),
+    .out_ts_hi_o (trav_ts_hi),
     .out_t0_o    (trav_t0),
     .out_t1_o    (trav_t1)
   );
@@ -476,11 +478,11 @@ module rt_core #(
         2'd1: node_q[trav_tag] <= trav_second;
         default: begin
           node_q[trav_tag] <= trav_first;
-          t1_q[trav_tag] <= trav_ts;
+          t1_q[trav_tag] <= trav_ts_hi;
           if (trav_overflow) begin
             ovf_q[trav_tag] <= 1'b1;
           end else begin
-            stack_q[32'(trav_tag) * StackDepth + 32'(sp_q[trav_tag])] <= {trav_second, trav_ts, trav_t1};
+            stack_q[32'(trav_tag) * StackDepth + 32'(sp_q[trav_tag])] <= {trav_second, trav_ts_lo, trav_t1};
             sp_q[trav_tag] <= sp_q[trav_tag] + 1'b1;
           end
         end
@@ -616,7 +618,7 @@ module rt_core #(
   // bits above TriIdxWidth (zero for a scene the parameters fit) are unused.
   /* verilator lint_off UNUSEDSIGNAL */
   logic unused_bits;
-  assign unused_bits = ^{fetch_addr, node_addr, trav_t0, entry_off, entry_id, tri_line, isect_id};
+  assign unused_bits = ^{fetch_addr, node_addr, trav_t0, trav_ts, entry_off, entry_id, tri_line, isect_id};
   /* verilator lint_on UNUSEDSIGNAL */
 
   // ------------------------------------------------------------ performance events

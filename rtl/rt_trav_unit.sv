@@ -6,9 +6,10 @@
 //   split = load(split word)                      fp_from_f32
 //   ts    = (split - o[a]) * inv[a]               fp_add (sub), fp_mul
 //   below_first = o[a] < split or (o[a] == split and d[a] <= 0)
-//   action: first only  if t1 < ts or ts <= 0
-//           second only if ts < t0
-//           push (second, ts, t1) and go first with t1 = ts otherwise
+//   lo = nudge_down(ts), hi = nudge_up(ts)      fp_nudge (conservative cells)
+//   action: first only  if t1 < lo or ts <= 0
+//           second only if hi < t0
+//           push (second, lo, t1) and go first with t1 = hi otherwise
 // Latency = FpFromF32Latency + FpAddLatency + FpMulLatency cycles.
 `default_nettype none
 // Unused outputs of the shared fp_cmp are left open on purpose.
@@ -19,6 +20,7 @@ module rt_trav_unit #(
   parameter int unsigned M = 23,
   parameter int unsigned TagWidth = 4,
   parameter int unsigned NodeIdxWidth = 24,
+  parameter int unsigned SlackUlps = 4,  // kTraversalSlackUlps (sw/trace/traversal.h)
   localparam int unsigned W = E + M + 1
 ) (
   input  logic                    clk_i,
@@ -41,6 +43,8 @@ module rt_trav_unit #(
   output logic [NodeIdxWidth-1:0] out_first_o,
   output logic [NodeIdxWidth-1:0] out_second_o,
   output logic [W-1:0]            out_ts_o,
+  output logic [W-1:0]            out_ts_lo_o,  // ts nudged down: the far child's start
+  output logic [W-1:0]            out_ts_hi_o,  // ts nudged up: the near child's end
   output logic [W-1:0]            out_t0_o,
   output logic [W-1:0]            out_t1_o
 );
@@ -117,9 +121,12 @@ module rt_trav_unit #(
   );
 
   // Decision on the pipeline's output.
+  fp_nudge #(.E(E), .M(M), .K(SlackUlps)) u_nudge (
+    .a_i(out_ts_o), .up_o(out_ts_hi_o), .down_o(out_ts_lo_o)
+  );
   logic t1_lt_ts, ts_le0, ts_lt_t0;
   fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_far (
-    .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(out_t1_o), .b_i(out_ts_o),
+    .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(out_t1_o), .b_i(out_ts_lo_o),
     .valid_o(), .lt_o(t1_lt_ts), .le_o(), .eq_o(), .min_o(), .max_o()
   );
   fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_zero (
@@ -127,7 +134,7 @@ module rt_trav_unit #(
     .valid_o(), .lt_o(), .le_o(ts_le0), .eq_o(), .min_o(), .max_o()
   );
   fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_near (
-    .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(out_ts_o), .b_i(out_t0_o),
+    .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(out_ts_hi_o), .b_i(out_t0_o),
     .valid_o(), .lt_o(ts_lt_t0), .le_o(), .eq_o(), .min_o(), .max_o()
   );
   assign out_first_o = bf3 ? below3 : above3;

@@ -3,6 +3,7 @@
 // child adjacent to its parent, leaves pointing into one shared list array.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -31,6 +32,13 @@ struct BuildOptions {
   bool perfect_splits = false;  // clip triangles to the node box (SAH only)
 };
 
+// The deepest tree BuildOptions::max_depth may ask for (InputError above it).
+inline constexpr int kMaxTreeDepth = 255;
+
+// What max_depth = -1 means: round(8 + 1.3 log2 N) for N non-degenerate
+// triangles (capped at kMaxTreeDepth; 0 when N = 0).
+int DefaultMaxDepth(size_t triangles);
+
 SplitMethod ParseSplitMethod(const std::string& name);  // "sah", "median", "midpoint"
 const char* SplitMethodName(SplitMethod m);
 
@@ -58,6 +66,14 @@ struct KdTree {
   TreeStats stats;
 };
 
+// Throws InputError on NaN/Inf vertices, invalid options, or a tree that
+// does not fit the memory image's 30-bit indices.
 KdTree BuildKdTree(const Scene& scene, const BuildOptions& options = {});
+
+// The statistics of a finished tree (everything but degenerate_triangles and
+// build_seconds), recounted from its nodes; `triangles` is the number of
+// non-degenerate triangles. sah_cost uses options' traversal and
+// intersection costs and the cells implied by tree.bounds_min/max.
+TreeStats ComputeTreeStats(const KdTree& tree, size_t triangles, const BuildOptions& options);
 
 }  // namespace kdrt

@@ -14,13 +14,14 @@ struct EmbreeScene::Impl {
   RTCScene scene = nullptr;
 };
 
-EmbreeScene::EmbreeScene(const Scene& scene, int threads) : impl_(std::make_unique<Impl>()) {
+EmbreeScene::EmbreeScene(const Scene& scene, int threads, bool robust) : impl_(std::make_unique<Impl>()) {
   const std::string config = "threads=" + std::to_string(threads) + ",set_affinity=0";
   impl_->device = rtcNewDevice(config.c_str());
   if (!impl_->device) throw std::runtime_error("embree: cannot create device");
   const auto start = std::chrono::steady_clock::now();
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  if (robust) rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
   const size_t n = scene.triangles.size();

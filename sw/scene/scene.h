@@ -46,6 +46,18 @@ struct Scene {
 // file:line on malformed input, NaN/Inf coordinates or an empty scene.
 Scene LoadScene(const std::string& path);
 
+// How NFF spheres (`s`) and cones/cylinders (`c`) become triangles; see
+// docs/scenes.md. A sphere gets sphere_segments slices around its z axis and
+// max(2, sphere_segments / 2) stacks from pole to pole:
+// 2 * segments * (stacks - 1) triangles. A cone gets cone_segments sides, two
+// triangles each (one where a radius is zero), open ends as in NFF.
+struct LoadOptions {
+  int sphere_segments = 16;  // 3 .. 4096
+  int cone_segments = 16;    // 3 .. 4096
+};
+
+Scene LoadScene(const std::string& path, const LoadOptions& options);
+
 // Twice the area is zero (exactly, in float arithmetic on the cross product):
 // such triangles can never be hit by the watertight test.
 bool IsDegenerate(const Triangle& t);

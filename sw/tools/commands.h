@@ -14,5 +14,7 @@ using Runner = std::function<int()>;
 Runner AddRenderCommand(CLI::App& app);
 Runner AddInfoCommand(CLI::App& app);
 Runner AddGenCommand(CLI::App& app);
+Runner AddRaysCommand(CLI::App& app);
+Runner AddSimCommand(CLI::App& app);
 
 }  // namespace kdrt::cli

@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
       kdrt::cli::AddRenderCommand(app),
       kdrt::cli::AddInfoCommand(app),
       kdrt::cli::AddGenCommand(app),
+      kdrt::cli::AddRaysCommand(app),
+      kdrt::cli::AddSimCommand(app),
   };
   try {
     app.parse(argc, argv);

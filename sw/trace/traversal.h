@@ -32,9 +32,19 @@ struct TraceResult {
   uint32_t prim = kNoPrim;
 };
 
+// Cell intervals are conservative: every distance the traversal compares is
+// computed with rounding (a sub, a mul and the reciprocal: within 3 ulps of
+// the exact distance along the loaded ray), so each interval end is moved
+// outwards by kTraversalSlackUlps encodings (fp::NudgeUp/NudgeDown, an exact
+// integer step). Without it a ray aimed at a vertex lying on a split plane
+// or on the scene box can skip every cell holding the vertex's triangles in
+// a narrow format (seen in bf16). The slack widens cells, never the hit test:
+// hits are still accepted only within [tmin, tmax].
+inline constexpr uint32_t kTraversalSlackUlps = 4;
+
 // The ray's [tmin, tmax] clipped to the scene box (the clip unit,
-// rtl/rt_clip_unit.sv). A slab whose distances are NaN (ray parallel to and
-// in the slab's plane) does not narrow the interval.
+// rtl/rt_clip_unit.sv), widened by the slack. A slab whose distances are NaN
+// (ray parallel to and in the slab's plane) does not narrow the interval.
 template <class A>
 struct BoxClip {
   typename A::T t0, t1;
@@ -54,6 +64,8 @@ BoxClip<A> ClipToBox(const A& a, const RaySetup<A>& r, const float bounds_min[3]
     if (a.Lt(c.t0, tn)) c.t0 = tn;
     if (a.Lt(tf, c.t1)) c.t1 = tf;
   }
+  c.t0 = a.NudgeDown(c.t0, kTraversalSlackUlps);
+  c.t1 = a.NudgeUp(c.t1, kTraversalSlackUlps);
   c.miss = a.Lt(c.t1, c.t0);
   return c;
 }
@@ -63,9 +75,11 @@ enum class TraversalAction { kFirst, kSecond, kPush };
 
 template <class A>
 struct TraversalStep {
-  typename A::T t_split;
+  typename A::T t_split;  // (split - o) * inv_d
+  typename A::T t_lo;     // t_split nudged down: where the far child's interval starts
+  typename A::T t_hi;     // t_split nudged up: where the near child's interval ends
   bool below_first;
-  TraversalAction action;  // kPush: push (second, t_split, t1), go first with t1 = t_split
+  TraversalAction action;  // kPush: push (second, t_lo, t1), go first with t1 = t_hi
 };
 
 template <class A>
@@ -74,10 +88,12 @@ TraversalStep<A> StepInnerNode(const A& a, float split_fp32, typename A::T o, ty
   TraversalStep<A> s;
   const typename A::T split = a.Load(split_fp32);
   s.t_split = a.Mul(a.Sub(split, o), inv_d);
+  s.t_lo = a.NudgeDown(s.t_split, kTraversalSlackUlps);
+  s.t_hi = a.NudgeUp(s.t_split, kTraversalSlackUlps);
   s.below_first = a.Lt(o, split) || (a.Eq(o, split) && a.Le(d, a.Zero()));
-  if (a.Lt(t1, s.t_split) || a.Le(s.t_split, a.Zero())) {
+  if (a.Lt(t1, s.t_lo) || a.Le(s.t_split, a.Zero())) {
     s.action = TraversalAction::kFirst;
-  } else if (a.Lt(s.t_split, t0)) {
+  } else if (a.Lt(s.t_hi, t0)) {
     s.action = TraversalAction::kSecond;
   } else {
     s.action = TraversalAction::kPush;
@@ -136,9 +152,9 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
       } else if (step.action == TraversalAction::kSecond) {
         node = second;
       } else {
-        stack[sp++] = Entry{second, step.t_split, t1};
+        stack[sp++] = Entry{second, step.t_lo, t1};
         node = first;
-        t1 = step.t_split;
+        t1 = step.t_hi;
       }
       continue;
     }

@@ -27,10 +27,10 @@ struct In {
 };
 
 struct Out {
-  uint32_t tag, action, first, second, ts, t0, t1;
+  uint32_t tag, action, first, second, ts, lo, hi, t0, t1;
   bool operator==(const Out& x) const {
     return tag == x.tag && action == x.action && first == x.first && second == x.second && ts == x.ts &&
-           t0 == x.t0 && t1 == x.t1;
+           lo == x.lo && hi == x.hi && t0 == x.t0 && t1 == x.t1;
   }
 };
 
@@ -42,6 +42,8 @@ Out Model(const SoftArith& a, const In& in) {
   o.first = s.below_first ? in.below : in.above;
   o.second = s.below_first ? in.above : in.below;
   o.ts = s.t_split;
+  o.lo = s.t_lo;
+  o.hi = s.t_hi;
   o.t0 = in.t0;
   o.t1 = in.t1;
   return o;
@@ -118,7 +120,8 @@ bool RunPreset(Format f, uint64_t count) {
     const bool in_fire = dut.in_valid_i && dut.in_ready_o;
     if (dut.out_valid_o && dut.out_ready_i) {
       const Out got{dut.out_tag_o, dut.out_action_o, dut.out_first_o, dut.out_second_o,
-                    static_cast<uint32_t>(dut.out_ts_o), static_cast<uint32_t>(dut.out_t0_o),
+                    static_cast<uint32_t>(dut.out_ts_o), static_cast<uint32_t>(dut.out_ts_lo_o),
+                    static_cast<uint32_t>(dut.out_ts_hi_o), static_cast<uint32_t>(dut.out_t0_o),
                     static_cast<uint32_t>(dut.out_t1_o)};
       if (expected.empty() || !(got == expected.front())) {
         std::printf("rt_trav_unit %s: FAIL at result %llu\n", f.Name().c_str(),

@@ -25,7 +25,7 @@ struct RunResult {
   std::string output;  // stdout and stderr
 };
 
-RunResult Run(const std::string& args) {
+RunResult RunKdrt(const std::string& args) {
   const std::string cmd = std::string(KDRT_BIN) + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
@@ -61,14 +61,14 @@ class Cli : public ::testing::Test {
 
 TEST_F(Cli, HelpOnEveryCommand) {
   for (const char* cmd : {"", "render", "info", "gen"}) {
-    const RunResult r = Run(std::string(cmd) + " --help");
+    const RunResult r = RunKdrt(std::string(cmd) + " --help");
     EXPECT_EQ(r.exit_code, 0) << cmd;
     EXPECT_NE(r.output.find("Usage"), std::string::npos) << cmd;
   }
 }
 
 TEST_F(Cli, RenderWritesImageHitsAndJson) {
-  const RunResult r = Run("render gen:room:500 --res 40x30 -o " + Path("a.png") + " --hits " + Path("a.exr") +
+  const RunResult r = RunKdrt("render gen:room:500 --res 40x30 -o " + Path("a.png") + " --hits " + Path("a.exr") +
                           " --json " + Path("a.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("Mrays/s"), std::string::npos);
@@ -93,7 +93,7 @@ TEST_F(Cli, RayFileHitBufferIsInInputOrder) {
   for (int i = 0; i < 10; ++i) rays.push_back(Ray{{0.1f * i, 0.5f, 5.0f}, {0, 0, -1}, 0.0f, INFINITY});
   WriteRaysFile(Path("r.bin"), rays);
   const std::string nff = Write("q.nff", "p 4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n");
-  const RunResult r = Run("render " + nff + " --rays " + Path("r.bin") + " --hits " + Path("r.exr"));
+  const RunResult r = RunKdrt("render " + nff + " --rays " + Path("r.bin") + " --hits " + Path("r.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   int w = 0, h = 0;
   const std::vector<Hit> hits = ReadHitBuffer(Path("r.exr"), &w, &h);
@@ -107,9 +107,9 @@ TEST_F(Cli, RayFileHitBufferIsInInputOrder) {
 }
 
 TEST_F(Cli, FormatsRenderAndFp32EqualsDefault) {
-  ASSERT_EQ(Run("render gen:balls:800 --res 32x32 -q --hits " + Path("d.exr")).exit_code, 0);
-  ASSERT_EQ(Run("render gen:balls:800 --res 32x32 -q --format fp32 --hits " + Path("f.exr")).exit_code, 0);
-  ASSERT_EQ(Run("render gen:balls:800 --res 32x32 -q --format fp16 --hits " + Path("h.exr")).exit_code, 0);
+  ASSERT_EQ(RunKdrt("render gen:balls:800 --res 32x32 -q --hits " + Path("d.exr")).exit_code, 0);
+  ASSERT_EQ(RunKdrt("render gen:balls:800 --res 32x32 -q --format fp32 --hits " + Path("f.exr")).exit_code, 0);
+  ASSERT_EQ(RunKdrt("render gen:balls:800 --res 32x32 -q --format fp16 --hits " + Path("h.exr")).exit_code, 0);
   int w, h;
   const auto d = ReadHitBuffer(Path("d.exr"), &w, &h), f = ReadHitBuffer(Path("f.exr"), &w, &h);
   ASSERT_EQ(d.size(), f.size());
@@ -138,7 +138,7 @@ TEST_F(Cli, BadInputGivesClearErrorAndNoOutput) {
   };
   for (const BadInput& c : cases) {
     const std::string scene = Write("bad.nff", c.file_text);
-    const RunResult r = Run("render " + scene + " " + c.extra_args + " -o " + Path("out.png") + " --hits " +
+    const RunResult r = RunKdrt("render " + scene + " " + c.extra_args + " -o " + Path("out.png") + " --hits " +
                             Path("out.exr") + " --json " + Path("out.json"));
     EXPECT_NE(r.exit_code, 0) << c.name;
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.name << ": " << r.output;
@@ -148,10 +148,10 @@ TEST_F(Cli, BadInputGivesClearErrorAndNoOutput) {
 }
 
 TEST_F(Cli, MissingSceneAndUnknownOption) {
-  RunResult r = Run("render " + Path("nope.nff") + " -o " + Path("x.png"));
+  RunResult r = RunKdrt("render " + Path("nope.nff") + " -o " + Path("x.png"));
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("nope.nff"), std::string::npos) << r.output;
-  r = Run("render gen:room:100 --no-such-option");
+  r = RunKdrt("render gen:room:100 --no-such-option");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("no-such-option"), std::string::npos) << r.output;
   EXPECT_EQ(FileCount(), 0u);
@@ -181,7 +181,7 @@ TEST_F(Cli, BadRayFiles) {
   };
   for (const auto& [bytes, expect] : cases) {
     write_raw(bytes);
-    const RunResult r = Run("render " + scene + " --rays " + Path("r.bin") + " --hits " + Path("o.exr"));
+    const RunResult r = RunKdrt("render " + scene + " --rays " + Path("r.bin") + " --hits " + Path("o.exr"));
     EXPECT_NE(r.exit_code, 0) << expect;
     EXPECT_NE(r.output.find(expect), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("r.bin"), std::string::npos) << r.output;
@@ -190,9 +190,9 @@ TEST_F(Cli, BadRayFiles) {
 }
 
 TEST_F(Cli, InfoAndGen) {
-  RunResult r = Run("gen tetra --size 300 -o " + Path("t.nff"));
+  RunResult r = RunKdrt("gen tetra --size 300 -o " + Path("t.nff"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = Run("info " + Path("t.nff") + " --json " + Path("t.json") + " --image " + Path("t.img"));
+  r = RunKdrt("info " + Path("t.nff") + " --json " + Path("t.json") + " --image " + Path("t.img"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("memory image"), std::string::npos);
   EXPECT_NE(r.output.find("SAH cost"), std::string::npos);

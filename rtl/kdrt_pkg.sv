@@ -1,0 +1,54 @@
+// Constants of the kdrt memory image, version 1: a mirror of
+// sw/common/image_format.h (the C++ header is the source of truth, and
+// docs/memory-image.md its prose). Every value is little-endian in memory;
+// offsets are in bytes.
+`default_nettype none
+
+package kdrt_pkg;
+
+  localparam int unsigned ImgVersion      = 1;
+  localparam int unsigned HeaderBytes     = 128;
+  localparam int unsigned SectionAlign    = 64;
+  localparam int unsigned NodeBytes       = 8;
+  localparam int unsigned ListEntryBytes  = 4;
+  localparam int unsigned TriangleBytes   = 48;
+
+  // "KDRTIMG\0" as the two little-endian words at offsets 0 and 4.
+  localparam logic [31:0] MagicWord0 = 32'h5452_444B;  // 'K' 'D' 'R' 'T'
+  localparam logic [31:0] MagicWord1 = 32'h0047_4D49;  // 'I' 'M' 'G' '\0'
+
+  // Header field offsets (img::Header).
+  localparam int unsigned HdrMagic        = 0;
+  localparam int unsigned HdrVersion      = 8;
+  localparam int unsigned HdrTotalBytes   = 12;
+  localparam int unsigned HdrNodeOffset   = 16;
+  localparam int unsigned HdrNodeCount    = 20;
+  localparam int unsigned HdrListOffset   = 24;
+  localparam int unsigned HdrListCount    = 28;
+  localparam int unsigned HdrTriOffset    = 32;
+  localparam int unsigned HdrTriCount     = 36;
+  localparam int unsigned HdrMaxDepth     = 40;
+  localparam int unsigned HdrMaxLeafPrims = 44;
+  localparam int unsigned HdrBoundsMin    = 48;  // 3 x fp32: x, y, z
+  localparam int unsigned HdrBoundsMax    = 60;
+  localparam int unsigned HdrReserved     = 72;  // 14 zero words
+
+  // Node word 1, bits [1:0]: split axis 0/1/2 or NodeLeaf; bits [31:2]: the
+  // above child's index (inner node) or the triangle count (leaf).
+  // Inner node word 0: split position (fp32); leaf word 0: first list entry.
+  localparam logic [1:0] NodeLeaf = 2'd3;
+  localparam int unsigned NodeIndexBits = 30;
+  localparam logic [31:0] MaxIndex = (32'd1 << NodeIndexBits) - 32'd1;
+
+  // Triangle record (img::TriangleRecord): v0, v1, v2 as 3 x fp32 each
+  // (x, y, z), then the triangle id and two padding words.
+  localparam int unsigned TriV0  = 0;
+  localparam int unsigned TriV1  = 12;
+  localparam int unsigned TriV2  = 24;
+  localparam int unsigned TriId  = 36;
+  // The vertex words the intersection unit reads: bytes [0, 36) of a record.
+  localparam int unsigned TriVertexBits = 288;
+
+endpackage
+
+`default_nettype wire

@@ -1,0 +1,242 @@
+#include "sim/core_harness.h"
+
+#include <unistd.h>
+
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+#include "Vrt_core.h"
+#include "fp/format.h"
+#include "sim/sim_ctrl.h"
+
+namespace kdrt::sim {
+namespace {
+
+std::string FloatHex(float f) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.9g (0x%08" PRIx32 ")", static_cast<double>(f), fp::BitsOf(f));
+  return buf;
+}
+
+std::string HitText(const Hit& h) {
+  std::ostringstream s;
+  s << (h.IsHit() ? "hit" : "miss") << ", prim ";
+  if (h.IsHit()) {
+    s << h.prim;
+  } else {
+    s << "none (0xffffffff)";
+  }
+  s << ", t " << FloatHex(h.t) << ", u " << FloatHex(h.u) << ", v " << FloatHex(h.v);
+  return s.str();
+}
+
+bool SameBits(const Hit& a, const Hit& b) {
+  return a.prim == b.prim && fp::BitsOf(a.t) == fp::BitsOf(b.t) && fp::BitsOf(a.u) == fp::BitsOf(b.u) &&
+         fp::BitsOf(a.v) == fp::BitsOf(b.v);
+}
+
+void SetWide(uint32_t* words, int count, const uint32_t* values) {
+  for (int i = 0; i < count; ++i) words[i] = values[i];
+}
+
+}  // namespace
+
+CoreHarness::CoreHarness(Vrt_core& top, const ImageView& image, const std::vector<Ray>& rays,
+                         const std::vector<Hit>& reference, MemoryModel& memory, const HarnessOptions& options)
+    : top_(top), image_(image), rays_(rays), reference_(reference), memory_(memory), options_(options) {
+  result_.hits.assign(rays.size(), Hit{});
+  result_.overflow.assign(rays.size(), 0);
+  received_flag_.assign(rays.size(), 0);
+  dump_wanted_ = options_.trace_ray < 0;
+  start_ = last_progress_ = std::chrono::steady_clock::now();
+}
+
+void CoreHarness::Configure() {
+  const img::Header& h = image_.header();
+  top_.node_base_i = h.node_offset;
+  top_.list_base_i = h.list_offset;
+  top_.tri_base_i = h.tri_offset;
+  uint32_t lo[3], hi[3];
+  for (int i = 0; i < 3; ++i) {
+    lo[i] = fp::BitsOf(h.bounds_min[i]);
+    hi[i] = fp::BitsOf(h.bounds_max[i]);
+  }
+  SetWide(top_.bounds_min_i.data(), 3, lo);
+  SetWide(top_.bounds_max_i.data(), 3, hi);
+  top_.ray_valid_i = 0;
+  top_.hit_ready_i = 1;
+  top_.mem_req_ready_i = 1;
+  top_.mem_resp_valid_i = 0;
+}
+
+void CoreHarness::BeginCycle(uint64_t cycle) {
+  if (next_ray_ < rays_.size()) {
+    const Ray& r = rays_[next_ray_];
+    const uint32_t words[8] = {fp::BitsOf(r.o.x), fp::BitsOf(r.o.y), fp::BitsOf(r.o.z), fp::BitsOf(r.d.x),
+                               fp::BitsOf(r.d.y), fp::BitsOf(r.d.z), fp::BitsOf(r.tmin), fp::BitsOf(r.tmax)};
+    SetWide(top_.ray_i.data(), 8, words);
+    top_.ray_id_i = static_cast<uint32_t>(next_ray_);
+    top_.ray_valid_i = 1;
+    if (options_.trace_ray >= 0 && static_cast<int64_t>(next_ray_) == options_.trace_ray) dump_wanted_ = true;
+  } else {
+    top_.ray_valid_i = 0;
+  }
+  MemoryResponse resp;
+  if (memory_.Respond(cycle, &resp)) {
+    uint32_t words[4];
+    std::memcpy(words, resp.data, sizeof words);  // little-endian host: byte k in [8k+7:8k]
+    SetWide(top_.mem_resp_data_i.data(), 4, words);
+    top_.mem_resp_tag_i = resp.tag;
+    top_.mem_resp_valid_i = 1;
+  } else {
+    top_.mem_resp_valid_i = 0;
+  }
+  top_.hit_ready_i = 1;
+  top_.mem_req_ready_i = 1;
+}
+
+void CoreHarness::EndCycle(uint64_t cycle) {
+  const uint32_t perf = top_.perf_o;
+  for (int b = 0; b < kPerfBits; ++b) result_.perf[b] += (perf >> b) & 1u;
+
+  if (top_.mem_req_valid_o && top_.mem_req_ready_i) {
+    try {
+      memory_.Request(top_.mem_req_addr_o, static_cast<uint8_t>(top_.mem_req_tag_o), cycle);
+    } catch (const MemoryError& e) {
+      throw SimFailure(std::string("harness error: ") + e.what());
+    }
+  }
+  if (top_.ray_valid_i && top_.ray_ready_o) {
+    ++next_ray_;
+    ++in_flight_;
+    if (in_flight_ > result_.max_in_flight) result_.max_in_flight = in_flight_;
+  }
+  bool trace_ray_done = false;
+  if (top_.hit_valid_o && top_.hit_ready_i) {
+    const uint32_t id = top_.hit_ray_id_o;
+    Hit got;
+    got.prim = top_.hit_prim_o;
+    got.t = fp::FloatOf(top_.hit_t_o);
+    got.u = fp::FloatOf(top_.hit_u_o);
+    got.v = fp::FloatOf(top_.hit_v_o);
+    const bool hit_flag = top_.hit_o;
+    if (id >= rays_.size() || received_flag_[id]) {
+      throw SimFailure("protocol error at cycle " + std::to_string(cycle) + ": hit record for ray id " +
+                       std::to_string(id) + (id >= rays_.size() ? ", which was never sent" : ", which already returned"));
+    }
+    if (hit_flag != got.IsHit()) {
+      throw SimFailure("protocol error at cycle " + std::to_string(cycle) + ": ray " + std::to_string(id) +
+                       ": hit_o = " + std::to_string(hit_flag) + " but hit_prim_o = " + std::to_string(got.prim));
+    }
+    CheckHit(cycle, id, got, top_.hit_overflow_o);
+    received_flag_[id] = 1;
+    ++received_;
+    --in_flight_;
+    last_hit_cycle_ = cycle;
+    trace_ray_done = options_.trace_ray >= 0 && static_cast<int64_t>(id) == options_.trace_ray;
+  }
+  if (trace_ray_done) dump_wanted_ = false;
+  if (cycle - last_hit_cycle_ > options_.timeout) {
+    std::ostringstream s;
+    s << "timeout: no hit record for " << options_.timeout << " cycles (cycle " << cycle << "); " << next_ray_ << " of "
+      << rays_.size() << " rays sent, " << received_ << " returned, " << memory_.outstanding()
+      << " memory reads outstanding; rays in flight:";
+    int listed = 0;
+    for (size_t i = 0; i < next_ray_ && listed < 16; ++i) {
+      if (!received_flag_[i]) {
+        s << " " << i;
+        ++listed;
+      }
+    }
+    throw SimFailure(s.str());
+  }
+  if (options_.progress && (cycle & 0x3FFF) == 0) Progress(cycle, false);
+}
+
+void CoreHarness::CheckHit(uint64_t cycle, uint32_t id, const Hit& got, bool overflow) {
+  result_.hits[id] = got;
+  if (got.IsHit()) ++result_.hit_count;
+  if (overflow) {
+    // Not a valid answer (the stack was forced smaller than the tree needs):
+    // counted and reported, not compared.
+    result_.overflow[id] = 1;
+    ++result_.overflows;
+    return;
+  }
+  const Hit& want = reference_[id];
+  if (SameBits(got, want)) return;
+
+  const Ray& r = rays_[id];
+  std::vector<uint32_t> path;
+  RayCounters counters;
+  TraceOne(image_, r, options_.reference, &counters, &path);
+  std::ostringstream s;
+  s << "co-simulation mismatch at cycle " << cycle << " (the first; the run stops here)\n";
+  s << "  ray " << id << "\n";
+  s << "    origin    " << FloatHex(r.o.x) << " " << FloatHex(r.o.y) << " " << FloatHex(r.o.z) << "\n";
+  s << "    direction " << FloatHex(r.d.x) << " " << FloatHex(r.d.y) << " " << FloatHex(r.d.z) << "\n";
+  s << "    tmin      " << FloatHex(r.tmin) << "\n";
+  s << "    tmax      " << FloatHex(r.tmax) << "\n";
+  s << "  model (" << options_.reference.format.Name() << "): " << HitText(want) << "\n";
+  s << "  RTL:   " << HitText(got) << ", overflow 0\n";
+  s << "  model node path (" << path.size() << " nodes, " << counters.leaves << " leaves, " << counters.tri_tests
+    << " triangle tests):";
+  const img::Node* nodes = image_.nodes();
+  for (uint32_t n : path) {
+    s << " " << n << (nodes[n].IsLeaf() ? "L" : "");
+  }
+  s << "\n  (L = leaf)";
+  throw SimFailure(s.str());
+}
+
+void CoreHarness::Progress(uint64_t cycle, bool final_line) {
+  const auto now = std::chrono::steady_clock::now();
+  if (!final_line && now - last_progress_ < std::chrono::milliseconds(500)) return;
+  last_progress_ = now;
+  const double secs = std::chrono::duration<double>(now - start_).count();
+  std::fprintf(stderr, "\rsim: %zu/%zu rays, %" PRIu64 " cycles, %.0f kcycles/s%s", received_, rays_.size(), cycle,
+               secs > 0 ? cycle / secs * 1e-3 : 0.0, final_line ? "\n" : "");
+  std::fflush(stderr);
+}
+
+RunOutcome RunVerilator(const RunSpec& spec) {
+  MemoryModel memory(spec.memory);
+  memory.LoadImage(std::vector<uint8_t>(spec.image->data(), spec.image->data() + spec.image->size()));
+  SimCtrl<Vrt_core> ctrl;
+  CoreHarness harness(ctrl.top(), *spec.image, *spec.rays, *spec.reference, memory, spec.options);
+  harness.Configure();
+  if (!spec.trace_path.empty()) ctrl.OpenTrace(spec.trace_path);
+  ctrl.EnableDump(harness.DumpWanted());
+  ctrl.Reset();
+  const auto start = std::chrono::steady_clock::now();
+  uint64_t cycle = 0;
+  while (!harness.Done()) {
+    cycle = ctrl.cycle();
+    harness.BeginCycle(cycle);
+    ctrl.EnableDump(harness.DumpWanted());
+    ctrl.Settle();
+    const bool dump_this_cycle = harness.DumpWanted();
+    harness.EndCycle(cycle);
+    // The cycle in which the traced ray leaves is still dumped.
+    ctrl.EnableDump(dump_this_cycle || harness.DumpWanted());
+    ctrl.Tick();
+  }
+  ctrl.CloseTrace();
+  RunOutcome out;
+  out.result = harness.result();
+  out.result.cycles = ctrl.cycle();
+  out.result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (spec.options.progress) {
+    std::fprintf(stderr, "\rsim: %zu/%zu rays, %" PRIu64 " cycles, %.0f kcycles/s\n", spec.rays->size(),
+                 spec.rays->size(), out.result.cycles,
+                 out.result.wall_seconds > 0 ? out.result.cycles / out.result.wall_seconds * 1e-3 : 0.0);
+  }
+  out.mem_bytes_read = memory.bytes_read();
+  out.mem_requests = memory.requests();
+  out.mem_max_outstanding = memory.max_outstanding();
+  return out;
+}
+
+}  // namespace kdrt::sim

@@ -1,0 +1,74 @@
+#include "sim/memory_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+namespace kdrt::sim {
+namespace {
+
+std::string Hex(uint64_t v) {
+  std::ostringstream s;
+  s << "0x" << std::hex << v;
+  return s.str();
+}
+
+}  // namespace
+
+MemoryModel::MemoryModel(const MemoryConfig& config) : config_(config) {
+  if (config.size_bytes == 0) throw std::invalid_argument("memory model: size must be positive");
+  if (config.latency == 0) throw std::invalid_argument("memory model: latency must be at least 1 cycle");
+  if (!(config.bytes_per_cycle > 0) || !std::isfinite(config.bytes_per_cycle)) {
+    throw std::invalid_argument("memory model: bandwidth must be a positive number of bytes per cycle");
+  }
+  // The bucket holds at least one beat, so any positive rate makes progress,
+  // and no more than one cycle's worth beyond that, so an idle memory cannot
+  // save up a burst faster than the port.
+  max_tokens_ = std::max<double>(kBeatBytes, config.bytes_per_cycle);
+  tokens_ = max_tokens_;
+}
+
+void MemoryModel::LoadImage(const std::vector<uint8_t>& bytes) {
+  if (bytes.size() > config_.size_bytes) {
+    throw MemoryError("memory image of " + std::to_string(bytes.size()) + " bytes does not fit the modelled memory of " +
+                      std::to_string(config_.size_bytes) + " bytes");
+  }
+  image_ = bytes;
+}
+
+void MemoryModel::Request(uint64_t addr, uint8_t tag, uint64_t cycle) {
+  if (addr % kBeatBytes != 0) {
+    throw MemoryError("memory request at " + Hex(addr) + " (cycle " + std::to_string(cycle) +
+                      ") is not 16-byte aligned");
+  }
+  if (addr >= config_.size_bytes || config_.size_bytes - addr < kBeatBytes) {
+    throw MemoryError("memory request at " + Hex(addr) + " (cycle " + std::to_string(cycle) +
+                      ") lies outside the modelled memory of " + std::to_string(config_.size_bytes) + " bytes");
+  }
+  queue_.push_back(Pending{cycle + config_.latency, addr, tag});
+  ++requests_;
+  max_outstanding_ = std::max<uint64_t>(max_outstanding_, queue_.size());
+}
+
+bool MemoryModel::Respond(uint64_t cycle, MemoryResponse* out) {
+  const uint64_t elapsed = started_ ? cycle - last_cycle_ : 1;
+  started_ = true;
+  last_cycle_ = cycle;
+  tokens_ = std::min(max_tokens_, tokens_ + config_.bytes_per_cycle * static_cast<double>(elapsed));
+  if (queue_.empty() || queue_.front().ready_cycle > cycle || tokens_ < kBeatBytes) return false;
+  const Pending p = queue_.front();
+  queue_.pop_front();
+  tokens_ -= kBeatBytes;
+  bytes_read_ += kBeatBytes;
+  out->tag = p.tag;
+  out->addr = p.addr;
+  std::memset(out->data, 0, kBeatBytes);
+  if (p.addr < image_.size()) {
+    const size_t n = std::min<size_t>(kBeatBytes, image_.size() - p.addr);
+    std::memcpy(out->data, image_.data() + p.addr, n);
+  }
+  return true;
+}
+
+}  // namespace kdrt::sim

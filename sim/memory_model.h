@@ -1,0 +1,87 @@
+// The core's memory: a cycle-based model of a read-only memory with a fixed
+// latency and a bandwidth limit, holding the kdrt memory image at address 0.
+//
+// Plain C++ on purpose (no Verilator or SystemC types): the Verilator harness
+// calls it once per clock cycle, and a SystemC memory module can wrap the
+// very same object.
+//
+// Timing. A request accepted in cycle c is answered no earlier than cycle
+// c + latency. Responses leave in request order, at most one 16-byte beat per
+// cycle (the width of the response port), and each one spends 16 bytes from a
+// token bucket that refills by `bytes_per_cycle` every cycle (fractions are
+// kept), so on average no more than bytes_per_cycle bytes leave per cycle.
+// Requests are always accepted: any number may be outstanding.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace kdrt::sim {
+
+inline constexpr uint32_t kBeatBytes = 16;
+
+// A request the hardware should never make (outside the memory, misaligned):
+// a harness error, not bad user input.
+class MemoryError : public std::runtime_error {
+ public:
+  explicit MemoryError(const std::string& what) : std::runtime_error(what) {}
+};
+
+struct MemoryConfig {
+  uint64_t size_bytes = uint64_t{1} << 28;  // the modelled memory
+  uint32_t latency = 20;                    // cycles from request to response
+  double bytes_per_cycle = 16.0;            // token-bucket refill rate
+};
+
+struct MemoryResponse {
+  uint8_t tag = 0;
+  uint64_t addr = 0;
+  uint8_t data[kBeatBytes] = {};
+};
+
+class MemoryModel {
+ public:
+  // Throws std::invalid_argument on a zero size, a latency of 0 or a
+  // bandwidth that is not positive and finite.
+  explicit MemoryModel(const MemoryConfig& config);
+
+  // Places `bytes` at address 0; the rest of the memory reads as zero.
+  // Throws MemoryError if the image does not fit.
+  void LoadImage(const std::vector<uint8_t>& bytes);
+
+  // A read of the 16 bytes at `addr` (16-byte aligned), accepted in cycle
+  // `cycle`. Throws MemoryError outside the memory or when misaligned.
+  void Request(uint64_t addr, uint8_t tag, uint64_t cycle);
+
+  // Advances to cycle `cycle` (call once per cycle, increasing) and returns
+  // true with the beat to drive on the response port this cycle, if any.
+  bool Respond(uint64_t cycle, MemoryResponse* out);
+
+  const MemoryConfig& config() const { return config_; }
+  uint64_t bytes_read() const { return bytes_read_; }
+  uint64_t requests() const { return requests_; }
+  size_t outstanding() const { return queue_.size(); }
+  uint64_t max_outstanding() const { return max_outstanding_; }
+
+ private:
+  struct Pending {
+    uint64_t ready_cycle;
+    uint64_t addr;
+    uint8_t tag;
+  };
+  MemoryConfig config_;
+  std::vector<uint8_t> image_;
+  std::deque<Pending> queue_;  // request order; ready cycles never decrease
+  double tokens_ = 0;
+  double max_tokens_ = 0;
+  uint64_t last_cycle_ = 0;
+  bool started_ = false;
+  uint64_t bytes_read_ = 0;
+  uint64_t requests_ = 0;
+  uint64_t max_outstanding_ = 0;
+};
+
+}  // namespace kdrt::sim

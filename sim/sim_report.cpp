@@ -1,0 +1,138 @@
+#include "sim/sim_report.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace kdrt::sim {
+namespace {
+
+enum PerfBit {
+  kTravBusy = 0,
+  kListBusy,
+  kIsectBusy,
+  kNodeHit,
+  kNodeMiss,
+  kListHit,
+  kListMiss,
+  kTriHit,
+  kTriMiss,
+  kStallMem,
+  kStallStack,
+  kStallBackpressure,
+  kRayIn,
+  kRayOut,
+  kOverflow,
+  kTravLeaf
+};
+
+const char* const kPerfNames[kPerfBits] = {"trav_busy",  "list_busy",  "isect_busy",  "node_hit",
+                                           "node_miss",  "list_hit",   "list_miss",   "tri_hit",
+                                           "tri_miss",   "stall_mem",  "stall_stack", "stall_backpressure",
+                                           "ray_in",     "ray_out",    "overflow",    "trav_leaf"};
+
+double Ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
+
+}  // namespace
+
+nlohmann::json ReportJson(const ReportInputs& in) {
+  const HarnessResult& r = in.run->result;
+  const double cycles = static_cast<double>(r.cycles);
+  const double rays = static_cast<double>(in.rays);
+  const auto& p = r.perf;
+  nlohmann::json perf;
+  for (int b = 0; b < kPerfBits; ++b) perf[kPerfNames[b]] = p[b];
+  const double nodes = in.reference_totals.nodes, tests = in.reference_totals.tri_tests;
+  const double bound_cycles = std::max(nodes, tests);
+  return {
+      {"command", "sim"},
+      {"scene", in.scene},
+      {"format", in.format},
+      {"loop", in.loop},
+      {"width", in.width},
+      {"height", in.height},
+      {"triangles", in.triangles},
+      {"tree", {{"nodes", in.tree_nodes}, {"max_depth", in.tree_depth}}},
+      {"model", in.config.Json()},
+      {"requirements", in.requirements.Json()},
+      {"memory",
+       {{"size_bytes", in.memory.size_bytes},
+        {"latency", in.memory.latency},
+        {"bytes_per_cycle", in.memory.bytes_per_cycle},
+        {"bytes_read", in.run->mem_bytes_read},
+        {"requests", in.run->mem_requests},
+        {"max_outstanding", in.run->mem_max_outstanding},
+        {"bytes_per_ray", Ratio(in.run->mem_bytes_read, rays)},
+        {"bytes_per_cycle_used", Ratio(in.run->mem_bytes_read, cycles)}}},
+      {"rays", in.rays},
+      {"hits", r.hit_count},
+      {"overflows", r.overflows},
+      {"cycles", r.cycles},
+      {"rays_per_cycle", Ratio(rays, cycles)},
+      {"cycles_per_ray", Ratio(cycles, rays)},
+      {"max_rays_in_flight", r.max_in_flight},
+      {"utilisation",
+       {{"traversal", Ratio(p[kTravBusy], cycles)},
+        {"list", Ratio(p[kListBusy], cycles)},
+        {"intersection", Ratio(p[kIsectBusy], cycles)}}},
+      {"stalls",
+       {{"memory", Ratio(p[kStallMem], cycles)},
+        {"stack", Ratio(p[kStallStack], cycles)},
+        {"backpressure", Ratio(p[kStallBackpressure], cycles)}}},
+      {"cache_hit_rate",
+       {{"node", Ratio(p[kNodeHit], p[kNodeHit] + p[kNodeMiss])},
+        {"list", Ratio(p[kListHit], p[kListHit] + p[kListMiss])},
+        {"tri", Ratio(p[kTriHit], p[kTriHit] + p[kTriMiss])}}},
+      {"perf_counts", perf},
+      {"reference_per_ray",
+       {{"nodes", Ratio(nodes, rays)},
+        {"leaves", Ratio(in.reference_totals.leaves, rays)},
+        {"tri_tests", Ratio(tests, rays)}}},
+      {"bound_cycles_per_ray", Ratio(bound_cycles, rays)},
+      {"efficiency", Ratio(bound_cycles, cycles)},
+      {"sim_seconds", r.wall_seconds},
+      {"sim_cycles_per_second", Ratio(cycles, r.wall_seconds)},
+      {"sim_rays_per_second", Ratio(rays, r.wall_seconds)},
+  };
+}
+
+void PrintReport(const nlohmann::json& j, std::FILE* out) {
+  auto d = [&](const nlohmann::json& v) { return v.get<double>(); };
+  auto u = [&](const nlohmann::json& v) { return static_cast<unsigned long long>(v.get<uint64_t>()); };
+  const auto& m = j["model"];
+  const auto& q = j["requirements"];
+  std::fprintf(out, "model          %s (%s loop)\n", m["key"].get<std::string>().c_str(),
+               j["loop"].get<std::string>().c_str());
+  std::fprintf(out, "scene needs    stack %d, node index %d bits, triangle index %d bits, address %d bits\n",
+               q["stack_depth"].get<int>(), q["node_idx_bits"].get<int>(), q["tri_idx_bits"].get<int>(),
+               q["addr_bits"].get<int>());
+  std::fprintf(out, "footprint      nodes %llu B, lists %llu B, triangles %llu B (image %llu B)\n",
+               u(q["node_bytes"]), u(q["list_bytes"]), u(q["tri_bytes"]), u(q["image_bytes"]));
+  const auto& mem = j["memory"];
+  std::fprintf(out, "memory         %llu B, latency %llu cycles, %.3g B/cycle\n", u(mem["size_bytes"]),
+               u(mem["latency"]), d(mem["bytes_per_cycle"]));
+  std::fprintf(out, "rays           %llu (%dx%d), %llu hits, %llu stack overflows\n", u(j["rays"]),
+               j["width"].get<int>(), j["height"].get<int>(), u(j["hits"]), u(j["overflows"]));
+  std::fprintf(out, "cycles         %llu\n", u(j["cycles"]));
+  std::fprintf(out, "rays per cycle %.4f\n", d(j["rays_per_cycle"]));
+  std::fprintf(out, "cycles per ray %.2f (bound %.2f: max(nodes, tests) per ray, efficiency %.1f %%)\n",
+               d(j["cycles_per_ray"]), d(j["bound_cycles_per_ray"]), 100 * d(j["efficiency"]));
+  const auto& ut = j["utilisation"];
+  std::fprintf(out, "utilisation    traversal %.1f %%, list %.1f %%, intersection %.1f %%\n",
+               100 * d(ut["traversal"]), 100 * d(ut["list"]), 100 * d(ut["intersection"]));
+  const auto& st = j["stalls"];
+  std::fprintf(out, "stalls         memory %.1f %%, stack %.1f %%, backpressure %.1f %% of cycles\n",
+               100 * d(st["memory"]), 100 * d(st["stack"]), 100 * d(st["backpressure"]));
+  const auto& ch = j["cache_hit_rate"];
+  std::fprintf(out, "cache hits     node %.1f %%, list %.1f %%, triangle %.1f %%\n", 100 * d(ch["node"]),
+               100 * d(ch["list"]), 100 * d(ch["tri"]));
+  std::fprintf(out, "memory traffic %.1f B/ray, %.2f B/cycle, %llu reads, max %llu outstanding\n",
+               d(mem["bytes_per_ray"]), d(mem["bytes_per_cycle_used"]), u(mem["requests"]),
+               u(mem["max_outstanding"]));
+  const auto& rp = j["reference_per_ray"];
+  std::fprintf(out, "reference/ray  %.2f nodes, %.2f leaves, %.2f triangle tests\n", d(rp["nodes"]),
+               d(rp["leaves"]), d(rp["tri_tests"]));
+  std::fprintf(out, "sim speed      %.3f s, %.0f cycles/s, %.0f rays/s\n", d(j["sim_seconds"]),
+               d(j["sim_cycles_per_second"]), d(j["sim_rays_per_second"]));
+}
+
+}  // namespace kdrt::sim

@@ -1,0 +1,421 @@
+// SAH kd-tree construction in O(N log N) after Wald & Havran 2006: every
+// triangle contributes start/end (or one planar) events per axis, sorted once
+// at the root; a node finds its best plane by sweeping its three sorted event
+// lists, and the children's lists come from a linear split of the parent's
+// plus a small sorted list for the triangles that straddle the plane, merged
+// in linear time.
+//
+// Unlike the paper, classification is conservative with respect to the float
+// split position: a triangle whose box touches the plane from one side is in
+// both children (only triangles lying exactly in the plane are given to one
+// side by the planar rule). The sweep counts accordingly:
+//   N_below(s) = #{box.lo <= s} (+ planar at s if they go below)
+//   N_above(s) = #{box.hi >= s} (+ planar at s if they go above)
+// A plane exactly at a box bound therefore duplicates the touching
+// triangles; the clean split the paper makes there is found instead at the
+// next float beside the bound (see FindSplit).
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include "accel/build_util.h"
+
+namespace kdrt::accel {
+namespace {
+
+// An event is one uint64: order-preserving position bits in the high half,
+// then triangle id and type, so sorting the integers sorts by position.
+enum EventType : uint32_t { kEnd = 0, kPlanar = 1, kStart = 2 };
+
+inline uint32_t OrderedBits(float f) {
+  if (f == 0.0f) f = 0.0f;  // -0 and +0 are one plane
+  uint32_t u;
+  std::memcpy(&u, &f, 4);
+  return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+}
+
+inline float FromOrderedBits(uint32_t o) {
+  const uint32_t u = (o & 0x80000000u) ? (o & 0x7fffffffu) : ~o;
+  float f;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+
+// OrderedBits never yields this (-0 is mapped to +0).
+constexpr uint32_t kNegativeZeroBits = 0x7fffffffu;
+
+inline uint64_t MakeEvent(float pos, uint32_t tri, EventType type) {
+  return (static_cast<uint64_t>(OrderedBits(pos)) << 32) | (tri << 2) | type;
+}
+inline uint32_t EventPos(uint64_t e) { return static_cast<uint32_t>(e >> 32); }
+inline uint32_t EventTri(uint64_t e) { return static_cast<uint32_t>(e) >> 2; }
+inline EventType EventKind(uint64_t e) { return static_cast<EventType>(e & 3u); }
+
+// LSD radix sort of the root event lists, 16 bits per pass (a few times
+// faster than std::sort on millions of keys); `tmp` is scratch.
+void RadixSort(std::vector<uint64_t>* keys, std::vector<uint64_t>* tmp) {
+  constexpr int kBits = 16;
+  constexpr size_t kBuckets = size_t{1} << kBits;
+  std::vector<uint64_t>& a = *keys;
+  std::vector<uint64_t>& b = *tmp;
+  b.resize(a.size());
+  std::vector<size_t> count(kBuckets);
+  for (int shift = 0; shift < 64; shift += kBits) {
+    std::fill(count.begin(), count.end(), 0);
+    for (uint64_t k : a) ++count[(k >> shift) & (kBuckets - 1)];
+    if (count[(a.empty() ? 0 : (a[0] >> shift)) & (kBuckets - 1)] == a.size()) continue;
+    size_t sum = 0;
+    for (size_t& c : count) {
+      const size_t here = c;
+      c = sum;
+      sum += here;
+    }
+    for (uint64_t k : a) b[count[(k >> shift) & (kBuckets - 1)]++] = k;
+    a.swap(b);
+  }
+  b.clear();
+}
+
+constexpr int kMaxBadRefines = 3;  // pbrt-v3's limit
+
+enum Side : uint8_t { kBoth = 0, kBelowOnly = 1, kAboveOnly = 2 };
+
+// A node's triangles: per axis, a range of the axis' event arena.
+struct NodeEvents {
+  size_t begin[3];
+  size_t end[3];
+  uint32_t count;  // triangles
+  Box cell;
+};
+
+struct Split {
+  int axis = -1;
+  uint32_t pos_bits = 0;
+  bool planar_below = true;
+  double cost = 0;
+  uint32_t n_below = 0;  // as counted by the sweep (exact before clipping)
+  uint32_t n_above = 0;
+};
+
+class SahBuilder {
+ public:
+  SahBuilder(const BuildInput& input, float traversal_cost, float isect_cost, float empty_bonus,
+             int max_leaf_prims, bool perfect_splits, TreeWriter* writer)
+      : in_(input),
+        tris_(*input.triangles),
+        traversal_cost_(traversal_cost),
+        isect_cost_(isect_cost),
+        empty_bonus_(empty_bonus),
+        max_leaf_prims_(max_leaf_prims),
+        perfect_(perfect_splits),
+        writer_(writer),
+        side_(tris_.size(), kBoth) {}
+
+  void Run() {
+    NodeEvents root;
+    root.cell = in_.bounds;
+    root.count = static_cast<uint32_t>(in_.ids.size());
+    for (int a = 0; a < 3; ++a) {
+      arena_[a].reserve(in_.ids.size() * 4 + 16);
+      for (uint32_t id : in_.ids) AppendEvents(id, in_.boxes[id], a, &arena_[a]);
+      RadixSort(&arena_[a], &new_below_[0]);
+      root.begin[a] = 0;
+      root.end[a] = arena_[a].size();
+    }
+    Build(root, 0, 0);
+  }
+
+ private:
+  bool IsFlat(uint32_t tri, int axis) const { return (in_.flat[tri] >> axis) & 1u; }
+
+  // A triangle lying in a plane x_axis = c gets one planar event at c (its
+  // exact vertex coordinate); otherwise start and end at its box bounds.
+  void AppendEvents(uint32_t tri, const Box& box, int axis, std::vector<uint64_t>* out) const {
+    if (IsFlat(tri, axis)) {
+      const glm::vec3& v = tris_[tri].v0;
+      out->push_back(MakeEvent(v[axis], tri, kPlanar));
+    } else {
+      out->push_back(MakeEvent(box.lo[axis], tri, kStart));
+      out->push_back(MakeEvent(box.hi[axis], tri, kEnd));
+    }
+  }
+
+  // Termination as in pbrt-v3: a split that does not beat the leaf cost
+  // is still taken up to kMaxBadRefines times on a path (the greedy cost
+  // cannot see that splitting further often pays off), unless it is hopeless
+  // (more than 4x the leaf cost in a node of fewer than 16 triangles).
+  void Build(const NodeEvents& node, int depth, int bad_refines) {
+    const double leaf_cost = static_cast<double>(isect_cost_) * node.count;
+    Split split;
+    if (node.count > static_cast<uint32_t>(max_leaf_prims_) && depth < in_.max_depth) {
+      split = FindSplit(node);
+    }
+    if (split.axis >= 0 && !(split.cost < leaf_cost)) ++bad_refines;
+    if (split.axis < 0 || bad_refines >= kMaxBadRefines ||
+        (split.cost > 4.0 * leaf_cost && node.count < 16)) {
+      MakeLeaf(node);
+      return;
+    }
+    const size_t child_start[3] = {arena_[0].size(), arena_[1].size(), arena_[2].size()};
+    NodeEvents below, above;
+    if (split.n_below == 0 || split.n_above == 0) {
+      // Cutting off empty space: nothing touches the plane, so the full
+      // child keeps the node's event lists as they are.
+      EmptySplit(node, split, &below, &above);
+    } else {
+      SplitEvents(node, split, &below, &above);
+    }
+    const uint32_t index = writer_->BeginInner();
+    Build(below, depth + 1, bad_refines);
+    writer_->FinishInner(index, split.axis, FromOrderedBits(split.pos_bits));
+    Build(above, depth + 1, bad_refines);
+    for (int a = 0; a < 3; ++a) arena_[a].resize(child_start[a]);
+  }
+
+  void MakeLeaf(const NodeEvents& node) {
+    leaf_ids_.clear();
+    const uint64_t* ev = arena_[0].data();
+    for (size_t i = node.begin[0]; i < node.end[0]; ++i) {
+      if (EventKind(ev[i]) != kEnd) leaf_ids_.push_back(EventTri(ev[i]));
+    }
+    writer_->AddLeaf(leaf_ids_);
+  }
+
+  // Candidate planes per axis. In each gap between consecutive event
+  // positions nothing touches the plane and the counts are constant, so the
+  // cost is linear in the position: its best point is the gap end towards
+  // the side with more triangles (the float just above the lower or just
+  // below the upper event). An event position itself, where touching
+  // triangles count on both sides and the planar rule applies, is never
+  // better than the gap beside it and is only tried where a gap is missing
+  // (adjacent floats, or the cell boundary).
+  Split FindSplit(const NodeEvents& node) const {
+    Split best;
+    const Box& cell = node.cell;
+    const double sa = SurfaceArea(cell);
+    if (!(sa > 0)) return best;
+    const double inv_sa = 1.0 / sa;
+    const uint32_t n = node.count;
+    const double isect = isect_cost_;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(cell.lo[axis] < cell.hi[axis])) continue;
+      const int a1 = (axis + 1) % 3;
+      const int a2 = (axis + 2) % 3;
+      const double d1 = static_cast<double>(cell.hi[a1]) - cell.lo[a1];
+      const double d2 = static_cast<double>(cell.hi[a2]) - cell.lo[a2];
+      const double lo = cell.lo[axis];
+      const double hi = cell.hi[axis];
+      const double face = 2.0 * d1 * d2 * inv_sa;     // area ratio of a zero-width child
+      const double per_unit = 2.0 * (d1 + d2) * inv_sa;  // its growth per unit width
+      auto consider = [&](uint32_t s_bits, uint32_t n_below, uint32_t n_above,
+                          bool planar_below) {
+        const double s = FromOrderedBits(s_bits);
+        const double p_below = face + (s - lo) * per_unit;
+        const double p_above = face + (hi - s) * per_unit;
+        const double bonus = (n_below == 0 || n_above == 0) ? empty_bonus_ : 0.0;
+        const double cost =
+            traversal_cost_ + isect * (1.0 - bonus) * (p_below * n_below + p_above * n_above);
+        if (best.axis < 0 || cost < best.cost) {
+          best.axis = axis;
+          best.pos_bits = s_bits;
+          best.planar_below = planar_below;
+          best.cost = cost;
+          best.n_below = n_below;
+          best.n_above = n_above;
+        }
+      };
+      // The floats strictly between a and b (ordered bits); false if none.
+      auto gap = [](uint32_t a, uint32_t b, uint32_t* s1, uint32_t* s2) {
+        *s1 = a + 1;
+        *s2 = b - 1;
+        if (*s1 == kNegativeZeroBits) ++*s1;  // -0 is not a separate plane
+        if (*s2 == kNegativeZeroBits) --*s2;
+        return a < *s1 && *s1 <= *s2 && *s2 < b;
+      };
+      // Preferring the upper end on a tie in counts would let an empty
+      // sliver one float wide be cut off again and again where double
+      // precision cannot see the width; the rule above never does that.
+      auto consider_gap = [&](uint32_t a, uint32_t b, uint32_t n_below, uint32_t n_above) {
+        uint32_t s1, s2;
+        if (gap(a, b, &s1, &s2)) consider(n_below < n_above ? s2 : s1, n_below, n_above, true);
+      };
+      const uint64_t* ev = arena_[axis].data();
+      uint32_t starts_before = 0;  // starts and planars strictly below the plane
+      uint32_t ends_before = 0;    // ends and planars strictly below the plane
+      const uint32_t lo_bits = OrderedBits(cell.lo[axis]);
+      const uint32_t hi_bits = OrderedBits(cell.hi[axis]);
+      uint32_t prev = lo_bits;
+      size_t i = node.begin[axis];
+      const size_t end = node.end[axis];
+      while (i < end) {
+        const uint32_t pos = EventPos(ev[i]);
+        uint32_t kinds[4] = {0, 0, 0, 0};  // indexed by EventType, branch-free
+        for (; i < end && EventPos(ev[i]) == pos; ++i) ++kinds[EventKind(ev[i])];
+        const uint32_t n_end = kinds[kEnd], n_planar = kinds[kPlanar], n_start = kinds[kStart];
+        consider_gap(prev, pos, starts_before, n - ends_before);
+        if (pos > lo_bits && pos < hi_bits) {
+          const uint32_t next = i < end ? EventPos(ev[i]) : hi_bits;
+          uint32_t s1, s2;
+          if (!gap(prev, pos, &s1, &s2) || !gap(pos, next, &s1, &s2)) {
+            // Planar triangles in the plane below, then above.
+            consider(pos, starts_before + n_start + n_planar, n - ends_before - n_planar, true);
+            if (n_planar > 0) consider(pos, starts_before + n_start, n - ends_before, false);
+          }
+        }
+        starts_before += n_start + n_planar;
+        ends_before += n_end + n_planar;
+        prev = pos;
+      }
+      consider_gap(prev, hi_bits, starts_before, n - ends_before);
+    }
+    return best;
+  }
+
+  void EmptySplit(const NodeEvents& node, const Split& split, NodeEvents* below,
+                  NodeEvents* above) const {
+    const int k = split.axis;
+    const float s = FromOrderedBits(split.pos_bits);
+    *below = node;
+    *above = node;
+    below->cell.hi[k] = s;
+    above->cell.lo[k] = s;
+    NodeEvents* empty = split.n_below == 0 ? below : above;
+    empty->count = 0;
+    for (int a = 0; a < 3; ++a) empty->end[a] = empty->begin[a];
+  }
+
+  void SplitEvents(const NodeEvents& node, const Split& split, NodeEvents* below,
+                   NodeEvents* above) {
+    const int k = split.axis;
+    const uint32_t s = split.pos_bits;
+    const float s_float = FromOrderedBits(s);
+
+    // Classify from the split axis' events (every triangle has a start or a
+    // planar event there).
+    const uint64_t* ev = arena_[k].data();
+    for (size_t i = node.begin[k]; i < node.end[k]; ++i) side_[EventTri(ev[i])] = kBoth;
+    for (size_t i = node.begin[k]; i < node.end[k]; ++i) {
+      const uint64_t e = ev[i];
+      const uint32_t pos = EventPos(e);
+      const uint32_t tri = EventTri(e);
+      switch (EventKind(e)) {
+        case kEnd:
+          if (pos < s) side_[tri] = kBelowOnly;
+          break;
+        case kStart:
+          if (pos > s) side_[tri] = kAboveOnly;
+          break;
+        case kPlanar:
+          if (pos < s || (pos == s && split.planar_below)) {
+            side_[tri] = kBelowOnly;
+          } else {
+            side_[tri] = kAboveOnly;
+          }
+          break;
+      }
+    }
+    uint32_t n_below = 0, n_above = 0;
+    straddlers_.clear();
+    for (size_t i = node.begin[k]; i < node.end[k]; ++i) {
+      if (EventKind(ev[i]) == kEnd) continue;
+      const uint32_t tri = EventTri(ev[i]);
+      switch (side_[tri]) {
+        case kBelowOnly: ++n_below; break;
+        case kAboveOnly: ++n_above; break;
+        default: straddlers_.push_back(tri); break;
+      }
+    }
+
+    below->cell = node.cell;
+    below->cell.hi[k] = s_float;
+    above->cell = node.cell;
+    above->cell.lo[k] = s_float;
+
+    // Events of the straddling triangles, recomputed for each child cell.
+    for (int a = 0; a < 3; ++a) {
+      new_below_[a].clear();
+      new_above_[a].clear();
+    }
+    for (uint32_t tri : straddlers_) {
+      Box box;
+      if (ChildBox(tri, below->cell, &box)) {
+        ++n_below;
+        for (int a = 0; a < 3; ++a) AppendEvents(tri, box, a, &new_below_[a]);
+      }
+      if (ChildBox(tri, above->cell, &box)) {
+        ++n_above;
+        for (int a = 0; a < 3; ++a) AppendEvents(tri, box, a, &new_above_[a]);
+      }
+    }
+    below->count = n_below;
+    above->count = n_above;
+
+    for (int a = 0; a < 3; ++a) {
+      std::sort(new_below_[a].begin(), new_below_[a].end());
+      std::sort(new_above_[a].begin(), new_above_[a].end());
+      // The one-sided triangles keep their events; a stable partition keeps
+      // both halves sorted.
+      kept_below_.clear();
+      kept_above_.clear();
+      const uint64_t* src = arena_[a].data();
+      for (size_t i = node.begin[a]; i < node.end[a]; ++i) {
+        const uint8_t side = side_[EventTri(src[i])];
+        if (side == kBelowOnly) {
+          kept_below_.push_back(src[i]);
+        } else if (side == kAboveOnly) {
+          kept_above_.push_back(src[i]);
+        }
+      }
+      std::vector<uint64_t>& arena = arena_[a];
+      const size_t start = arena.size();
+      const size_t n_b = kept_below_.size() + new_below_[a].size();
+      const size_t n_a = kept_above_.size() + new_above_[a].size();
+      arena.resize(start + n_b + n_a);
+      std::merge(kept_below_.begin(), kept_below_.end(), new_below_[a].begin(),
+                 new_below_[a].end(), arena.begin() + start);
+      std::merge(kept_above_.begin(), kept_above_.end(), new_above_[a].begin(),
+                 new_above_[a].end(), arena.begin() + start + n_b);
+      below->begin[a] = start;
+      below->end[a] = start + n_b;
+      above->begin[a] = start + n_b;
+      above->end[a] = start + n_b + n_a;
+    }
+  }
+
+  // The part of a straddling triangle's box inside a child cell; false if
+  // (with perfect splits) the triangle does not reach into the cell.
+  bool ChildBox(uint32_t tri, const Box& cell, Box* box) const {
+    if (perfect_) return ClippedTriangleBox(tris_[tri], cell, box);
+    *box = ClampToCell(in_.boxes[tri], cell);
+    return true;
+  }
+
+  const BuildInput& in_;
+  const std::vector<Triangle>& tris_;
+  const float traversal_cost_;
+  const float isect_cost_;
+  const float empty_bonus_;
+  const int max_leaf_prims_;
+  const bool perfect_;
+  TreeWriter* writer_;
+
+  std::vector<uint64_t> arena_[3];  // stack of event lists, one per axis
+  std::vector<uint8_t> side_;       // per triangle id, valid while splitting a node
+  // Scratch reused by every node, so the hot loops do not allocate.
+  std::vector<uint32_t> straddlers_;
+  std::vector<uint64_t> new_below_[3], new_above_[3];
+  std::vector<uint64_t> kept_below_, kept_above_;
+  std::vector<uint32_t> leaf_ids_;
+};
+
+}  // namespace
+
+void BuildSahTree(const BuildInput& input, float traversal_cost, float isect_cost,
+                  float empty_bonus, int max_leaf_prims, bool perfect_splits,
+                  TreeWriter* writer) {
+  SahBuilder(input, traversal_cost, isect_cost, empty_bonus, max_leaf_prims, perfect_splits,
+             writer)
+      .Run();
+}
+
+}  // namespace kdrt::accel

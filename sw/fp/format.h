@@ -1,0 +1,217 @@
+// Bit-accurate parameterised floating-point formats (E exponent bits, M
+// mantissa bits): the arithmetic shared by the reference tracer and the RTL
+// (rtl/fp_*.sv). The RTL is checked bit for bit against these functions.
+//
+// Encoding: right-aligned in a uint32_t, bit E+M = sign, bits [E+M-1:M] =
+// biased exponent (bias 2^(E-1)-1), bits [M-1:0] = mantissa. Bits above E+M
+// are ignored on input and zero on output.
+//
+// Policy (see docs/number-formats.md):
+//  - round to nearest, ties to even;
+//  - DAZ: a subnormal operand is a zero of the same sign;
+//  - FTZ: a result whose magnitude, rounded to M+1 significant bits with an
+//    unbounded exponent range, is below the smallest normal is a signed zero
+//    (x86 SSE with FTZ|DAZ: tininess after rounding);
+//  - overflow after rounding gives an infinity;
+//  - every NaN result is the canonical quiet NaN (sign 0, exponent all ones,
+//    mantissa MSB 1, other bits 0);
+//  - exact zero sums are +0 except (-0) + (-0) = -0;
+//  - Min/Max: NaN if either operand is NaN; Min(-0,+0) = -0, Max(-0,+0) = +0.
+//
+// All free functions assume the caller's floating-point rounding mode is the
+// default round-to-nearest (they use double arithmetic internally); they work
+// with or without ScopedFtzDaz held, because no double they compute is
+// subnormal.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace kdrt::fp {
+
+struct Format {
+  int e = 8;   // exponent bits, 2..8
+  int m = 23;  // mantissa bits (without the hidden bit), 1..23
+
+  int Width() const { return 1 + e + m; }
+  int Bias() const { return (1 << (e - 1)) - 1; }
+  uint32_t ExpAllOnes() const { return (1u << e) - 1; }
+  uint32_t SignMask() const { return 1u << (e + m); }
+  uint32_t ExpMask() const { return ExpAllOnes() << m; }
+  uint32_t MantMask() const { return (1u << m) - 1; }
+  uint32_t WidthMask() const { return (SignMask() << 1) - 1; }
+  uint32_t CanonicalNaN() const { return ExpMask() | (1u << (m - 1)); }
+  uint32_t Inf(bool negative = false) const { return (negative ? SignMask() : 0u) | ExpMask(); }
+  uint32_t Zero(bool negative = false) const { return negative ? SignMask() : 0u; }
+  uint32_t One() const { return static_cast<uint32_t>(Bias()) << m; }
+  // "fp32", "fp24", "bf16", "fp16" for the presets, "eXmY" otherwise.
+  std::string Name() const;
+
+  bool operator==(const Format& o) const { return e == o.e && m == o.m; }
+  bool operator!=(const Format& o) const { return !(*this == o); }
+};
+
+inline constexpr Format kFp32{8, 23};
+inline constexpr Format kFp24{7, 16};
+inline constexpr Format kBf16{8, 7};
+inline constexpr Format kFp16{5, 10};
+
+// Throws kdrt::InputError unless 2 <= e <= 8 and 1 <= m <= 23. The arithmetic
+// functions below do not check (they are the hot path): build every Format
+// through MakeFormat or ParseFormat.
+Format MakeFormat(int e, int m);
+// "fp32", "fp24", "bf16", "fp16" or "eXmY" (e.g. "e4m3"); throws InputError.
+Format ParseFormat(const std::string& name);
+std::vector<Format> Presets();
+
+// Classification (a subnormal encoding counts as a zero: DAZ).
+inline bool IsNaN(Format f, uint32_t x) {
+  return (x & f.ExpMask()) == f.ExpMask() && (x & f.MantMask()) != 0;
+}
+inline bool IsInf(Format f, uint32_t x) {
+  return (x & f.ExpMask()) == f.ExpMask() && (x & f.MantMask()) == 0;
+}
+inline bool IsZero(Format f, uint32_t x) { return (x & f.ExpMask()) == 0; }
+inline bool SignBit(Format f, uint32_t x) { return (x & f.SignMask()) != 0; }
+
+// Conversions. FromDouble/FromFloat/FromF32Bits round once (RNE, DAZ on the
+// input, FTZ and overflow as above). ToFloat/ToDouble are exact; a NaN becomes
+// 0x7FC00000 / the default quiet double NaN.
+uint32_t FromDouble(Format f, double x);
+uint32_t FromF32Bits(Format f, uint32_t bits);
+uint32_t FromFloat(Format f, float x);
+double ToDouble(Format f, uint32_t x);
+float ToFloat(Format f, uint32_t x);
+
+// Arithmetic, correctly rounded under the policy above.
+uint32_t Add(Format f, uint32_t a, uint32_t b);
+uint32_t Sub(Format f, uint32_t a, uint32_t b);
+uint32_t Mul(Format f, uint32_t a, uint32_t b);
+uint32_t Div(Format f, uint32_t a, uint32_t b);
+uint32_t Min(Format f, uint32_t a, uint32_t b);
+uint32_t Max(Format f, uint32_t a, uint32_t b);
+// Sign flips never flush a subnormal (they are bit operations, like the
+// hardware's); a NaN operand gives the canonical NaN.
+uint32_t Neg(Format f, uint32_t x);
+uint32_t Abs(Format f, uint32_t x);
+// Steps of k encodings, for conservative interval ends (the traversal widens
+// its cells with them; rtl/fp_nudge.sv). Only positive finite non-zero
+// values move: NudgeUp saturates at +inf, NudgeDown gives +0 where it would
+// leave the normal range. Zeros, negatives, infinities and NaNs are returned
+// as they are (a NaN as the canonical NaN). Exact integer steps on the
+// encoding: no rounding involved.
+uint32_t NudgeUp(Format f, uint32_t x, uint32_t k);
+uint32_t NudgeDown(Format f, uint32_t x, uint32_t k);
+// IEEE comparisons: false when either operand is NaN; -0 == +0.
+bool Lt(Format f, uint32_t a, uint32_t b);
+bool Le(Format f, uint32_t a, uint32_t b);
+bool Eq(Format f, uint32_t a, uint32_t b);
+
+inline uint32_t BitsOf(float x) {
+  uint32_t u;
+  std::memcpy(&u, &x, sizeof u);
+  return u;
+}
+inline float FloatOf(uint32_t u) {
+  float x;
+  std::memcpy(&x, &u, sizeof x);
+  return x;
+}
+
+// Arithmetic policies: the tracer is templated on one of these; both have the
+// same interface. NativeF32Arith and SoftArith(kFp32) give bit-identical
+// results for every non-NaN result and both give a NaN when one does
+// (checked by tests/fp/native_test.cpp). IsNeg of a NaN is unspecified for
+// NativeF32Arith (x86's default NaN is negative); callers must not rely on it.
+
+// The fast fp32 path: native float. The caller MUST hold ScopedFtzDaz
+// (fp/ftz.h) on the calling thread, and every value must come from Load or
+// from another method of this class (Load flushes subnormals; the arithmetic
+// then never produces one).
+struct NativeF32Arith {
+  using T = float;
+
+  static T Load(float fp32_from_memory) {
+    // Done on the bits: the compiler would fold x * 1.0f away, and it does
+    // not know that DAZ makes that multiply flush.
+    uint32_t u = BitsOf(fp32_from_memory);
+    uint32_t keep = (u & 0x7F800000u) == 0 ? 0x80000000u : 0xFFFFFFFFu;
+    return FloatOf(u & keep);
+  }
+  static float Store(T x) { return x; }
+  static T Add(T a, T b) { return a + b; }
+  static T Sub(T a, T b) { return a - b; }
+  static T Mul(T a, T b) { return a * b; }
+  static T Div(T a, T b) { return a / b; }
+  static T Min(T a, T b) {
+    if (a < b) return a;
+    if (b < a) return b;
+    if (a == b) return FloatOf(BitsOf(a) | BitsOf(b));  // min(-0, +0) = -0
+    return a + b;                                       // a NaN
+  }
+  static T Max(T a, T b) {
+    if (a > b) return a;
+    if (b > a) return b;
+    if (a == b) return FloatOf(BitsOf(a) & BitsOf(b));  // max(-0, +0) = +0
+    return a + b;
+  }
+  static T Neg(T x) { return -x; }
+  static T Abs(T x) { return std::fabs(x); }
+  static T NudgeUp(T x, uint32_t k) {
+    if (!(x > 0.0f) || x == std::numeric_limits<float>::infinity()) return x;
+    const uint32_t u = BitsOf(x) + k;
+    return u >= 0x7F800000u ? std::numeric_limits<float>::infinity() : FloatOf(u);
+  }
+  static T NudgeDown(T x, uint32_t k) {
+    if (!(x > 0.0f) || x == std::numeric_limits<float>::infinity()) return x;
+    const uint32_t u = BitsOf(x);
+    return u < 0x00800000u + k ? 0.0f : FloatOf(u - k);
+  }
+  static bool Lt(T a, T b) { return a < b; }
+  static bool Le(T a, T b) { return a <= b; }
+  static bool Eq(T a, T b) { return a == b; }
+  static bool IsNeg(T x) { return std::signbit(x); }
+  static bool IsZero(T x) { return x == 0.0f; }
+  static T Zero() { return 0.0f; }
+  static T Inf() { return std::numeric_limits<float>::infinity(); }
+  static T One() { return 1.0f; }
+};
+
+// Any (E, M) format, computed in software on the encodings.
+class SoftArith {
+ public:
+  using T = uint32_t;
+
+  explicit SoftArith(Format f) : f_(MakeFormat(f.e, f.m)) {}
+  Format format() const { return f_; }
+
+  T Load(float fp32_from_memory) const { return FromFloat(f_, fp32_from_memory); }
+  float Store(T x) const { return ToFloat(f_, x); }
+  T Add(T a, T b) const { return fp::Add(f_, a, b); }
+  T Sub(T a, T b) const { return fp::Sub(f_, a, b); }
+  T Mul(T a, T b) const { return fp::Mul(f_, a, b); }
+  T Div(T a, T b) const { return fp::Div(f_, a, b); }
+  T Min(T a, T b) const { return fp::Min(f_, a, b); }
+  T Max(T a, T b) const { return fp::Max(f_, a, b); }
+  T Neg(T x) const { return fp::Neg(f_, x); }
+  T NudgeUp(T x, uint32_t k) const { return fp::NudgeUp(f_, x, k); }
+  T NudgeDown(T x, uint32_t k) const { return fp::NudgeDown(f_, x, k); }
+  T Abs(T x) const { return fp::Abs(f_, x); }
+  bool Lt(T a, T b) const { return fp::Lt(f_, a, b); }
+  bool Le(T a, T b) const { return fp::Le(f_, a, b); }
+  bool Eq(T a, T b) const { return fp::Eq(f_, a, b); }
+  bool IsNeg(T x) const { return fp::SignBit(f_, x); }
+  bool IsZero(T x) const { return fp::IsZero(f_, x); }
+  T Zero() const { return f_.Zero(); }
+  T Inf() const { return f_.Inf(); }
+  T One() const { return f_.One(); }
+
+ private:
+  Format f_;
+};
+
+}  // namespace kdrt::fp

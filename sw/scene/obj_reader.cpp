@@ -1,0 +1,129 @@
+// Wavefront OBJ through tinyobjloader, with its triangulation turned off so
+// polygons are fanned here in file order (the numbering contract).
+// tinyobjloader silently reads a malformed number as 0 and does not say on
+// which line a face is wrong, so a first pass over the `v` and `f` lines
+// checks numbers and indices and reports file:line itself.
+#include <charconv>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <tiny_obj_loader.h>
+
+#include "common/error.h"
+#include "scene/loaders.h"
+#include "scene/scene_builder.h"
+#include "scene/text_fields.h"
+
+namespace kdrt {
+
+namespace {
+
+// One face corner "v", "v/t", "v//n" or "v/t/n": only the position index
+// matters; OBJ indices start at 1 and negative ones count back from the
+// latest vertex.
+void CheckCorner(std::string_view corner, long vertices, const TextPos& pos) {
+  std::string_view index = corner.substr(0, corner.find('/'));
+  long value = 0;
+  const char* end = index.data() + index.size();
+  auto [ptr, ec] = std::from_chars(index.data(), end, value);
+  if (ec != std::errc() || ptr != end || index.empty()) {
+    throw InputError(*pos.file, pos.line,
+                     "face vertex '" + std::string(corner.substr(0, 40)) + "' is not an index");
+  }
+  if (value == 0 || value > vertices || value < -vertices) {
+    throw InputError(*pos.file, pos.line,
+                     "face vertex index " + std::to_string(value) + " is out of range (" +
+                         std::to_string(vertices) + " vertices so far)");
+  }
+}
+
+void CheckObjText(const std::string& path) {
+  const std::string text = ReadWholeFile(path);
+  std::vector<std::string_view> fields;
+  long vertices = 0;
+  int line_no = 0;
+  size_t offset = 0;
+  while (offset < text.size()) {
+    size_t end = text.find('\n', offset);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line(text.data() + offset, end - offset);
+    offset = end + 1;
+    ++line_no;
+    SplitFields(line, &fields);
+    if (fields.empty()) continue;
+    const TextPos pos{&path, line_no};
+    if (fields[0] == "v") {
+      // x y z, optionally w, or x y z r g b (vertex colours).
+      if (fields.size() != 4 && fields.size() != 5 && fields.size() != 7) {
+        throw InputError(path, line_no,
+                         "vertex line needs 3, 4 or 6 numbers, got " +
+                             std::to_string(fields.size() - 1));
+      }
+      for (size_t i = 1; i < fields.size(); ++i) ParseFloat(fields[i], pos, "vertex coordinate");
+      ++vertices;
+    } else if (fields[0] == "f") {
+      if (fields.size() < 4) {
+        throw InputError(path, line_no,
+                         "face with " + std::to_string(fields.size() - 1) +
+                             " vertices (needs at least 3)");
+      }
+      for (size_t i = 1; i < fields.size(); ++i) CheckCorner(fields[i], vertices, pos);
+    }
+  }
+}
+
+}  // namespace
+
+Scene LoadObj(const std::string& path) {
+  CheckObjText(path);
+
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    std::string err = reader.Error();
+    while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
+    throw InputError(path, 0, "OBJ: " + (err.empty() ? std::string("cannot parse") : err));
+  }
+  const std::vector<tinyobj::real_t>& xyz = reader.GetAttrib().vertices;
+  const std::vector<tinyobj::material_t>& materials = reader.GetMaterials();
+  const size_t vertex_count = xyz.size() / 3;
+
+  Scene scene;
+  scene.source = path;
+  SceneBuilder builder(&scene);
+  std::vector<glm::vec3> polygon;
+  // tinyobjloader keeps faces in file order within a shape, and shapes in
+  // the order their groups start.
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const tinyobj::mesh_t& mesh = shape.mesh;
+    size_t next = 0;
+    for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
+      const size_t n = mesh.num_face_vertices[f];
+      if (next + n > mesh.indices.size()) throw InputError(path, 0, "OBJ: inconsistent face data");
+      polygon.clear();
+      for (size_t k = 0; k < n; ++k) {
+        int vi = mesh.indices[next + k].vertex_index;
+        if (vi < 0 || static_cast<size_t>(vi) >= vertex_count) {
+          throw InputError(path, 0, "OBJ: face vertex index out of range");
+        }
+        polygon.emplace_back(xyz[3 * vi], xyz[3 * vi + 1], xyz[3 * vi + 2]);
+      }
+      next += n;
+      if (n < 3) throw InputError(path, 0, "OBJ: face with fewer than 3 vertices");
+      int mat = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+      if (mat >= 0 && static_cast<size_t>(mat) < materials.size()) {
+        const tinyobj::real_t* kd = materials[mat].diffuse;
+        builder.SetColor(glm::vec3(kd[0], kd[1], kd[2]));
+      } else {
+        builder.SetColor(glm::vec3(1.0f));
+      }
+      builder.AddFan(polygon.data(), polygon.size());
+    }
+  }
+  return scene;
+}
+
+}  // namespace kdrt

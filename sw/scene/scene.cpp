@@ -1,0 +1,79 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <string>
+
+#include "common/error.h"
+#include "scene/loaders.h"
+
+namespace kdrt {
+
+namespace {
+
+constexpr int kMaxSegments = 4096;
+
+std::string LowerExtension(const std::string& path) {
+  size_t slash = path.find_last_of('/');
+  size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+bool Finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// The loaders already reject bad numbers where they can say on which line;
+// this is the last line of defence for what the libraries let through.
+void CheckLoaded(const Scene& scene, const std::string& path) {
+  if (scene.triangles.empty()) throw InputError(path, 0, "scene has no triangles");
+  for (size_t i = 0; i < scene.triangles.size(); ++i) {
+    const Triangle& t = scene.triangles[i];
+    if (!Finite(t.v0) || !Finite(t.v1) || !Finite(t.v2)) {
+      throw InputError(path, 0, "triangle " + std::to_string(i) + " has a NaN or Inf coordinate");
+    }
+  }
+}
+
+}  // namespace
+
+Scene LoadScene(const std::string& path) { return LoadScene(path, LoadOptions()); }
+
+Scene LoadScene(const std::string& path, const LoadOptions& options) {
+  if (options.sphere_segments < 3 || options.sphere_segments > kMaxSegments ||
+      options.cone_segments < 3 || options.cone_segments > kMaxSegments) {
+    throw InputError(path, 0,
+                     "sphere and cone segments must be in 3.." + std::to_string(kMaxSegments));
+  }
+  std::string ext = LowerExtension(path);
+  Scene scene;
+  if (ext == "nff") {
+    scene = LoadNff(path, options);
+  } else if (ext == "obj") {
+    scene = LoadObj(path);
+  } else if (ext == "ply" || ext == "off") {
+    scene = LoadWithAssimp(path, ext == "ply");
+  } else {
+    throw InputError(path, 0,
+                     "unknown scene file extension '" + ext +
+                         "' (expected .nff, .obj, .ply, .off)");
+  }
+  CheckLoaded(scene, path);
+  return scene;
+}
+
+bool IsDegenerate(const Triangle& t) {
+  const glm::vec3 e1 = t.v1 - t.v0;
+  const glm::vec3 e2 = t.v2 - t.v0;
+  const float cx = e1.y * e2.z - e1.z * e2.y;
+  const float cy = e1.z * e2.x - e1.x * e2.z;
+  const float cz = e1.x * e2.y - e1.y * e2.x;
+  return cx == 0.0f && cy == 0.0f && cz == 0.0f;
+}
+
+}  // namespace kdrt

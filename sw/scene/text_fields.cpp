@@ -1,0 +1,96 @@
+#include "scene/text_fields.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "common/error.h"
+
+namespace kdrt {
+
+void SplitFields(std::string_view line, std::vector<std::string_view>* fields) {
+  fields->clear();
+  size_t i = 0;
+  const size_t n = line.size();
+  while (i < n) {
+    while (i < n && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+    size_t start = i;
+    while (i < n && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+    if (i > start) fields->push_back(line.substr(start, i - start));
+  }
+}
+
+namespace {
+
+std::string Quote(std::string_view s) {
+  constexpr size_t kMax = 40;
+  std::string q = "'" + std::string(s.substr(0, kMax));
+  if (s.size() > kMax) q += "...";
+  return q + "'";
+}
+
+}  // namespace
+
+float ParseFloat(std::string_view field, const TextPos& pos, const char* what) {
+  // from_chars rejects a leading '+', which C's printf never writes but
+  // hand-written files sometimes do.
+  std::string_view digits = field;
+  if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
+  bool sign_ok = digits.empty() || (digits[0] != '+' && (digits[0] != '-' || digits == field));
+  float value = 0.0f;
+  const char* end = digits.data() + digits.size();
+  auto [ptr, ec] = std::from_chars(digits.data(), end, value);
+  if (ec == std::errc::result_out_of_range) {
+    throw InputError(*pos.file, pos.line,
+                     std::string(what) + " " + Quote(field) + " is out of float range");
+  }
+  if (ec != std::errc() || ptr != end || digits.empty() || !sign_ok) {
+    throw InputError(*pos.file, pos.line,
+                     std::string(what) + ": expected a number, got " + Quote(field));
+  }
+  if (!std::isfinite(value)) {
+    throw InputError(*pos.file, pos.line,
+                     std::string(what) + " " + Quote(field) + " is not finite (NaN or Inf)");
+  }
+  return value;
+}
+
+int ParseInt(std::string_view field, const TextPos& pos, const char* what, int lo, int hi) {
+  long long value = 0;
+  const char* end = field.data() + field.size();
+  auto [ptr, ec] = std::from_chars(field.data(), end, value);
+  if (ec == std::errc::result_out_of_range || (ec == std::errc() && ptr == end &&
+                                               (value < lo || value > hi))) {
+    throw InputError(*pos.file, pos.line,
+                     std::string(what) + " " + Quote(field) + " is outside " +
+                         std::to_string(lo) + ".." + std::to_string(hi));
+  }
+  if (ec != std::errc() || ptr != end) {
+    throw InputError(*pos.file, pos.line,
+                     std::string(what) + ": expected an integer, got " + Quote(field));
+  }
+  return static_cast<int>(value);
+}
+
+glm::vec3 ParseVec3(const std::vector<std::string_view>& f, size_t first, const TextPos& pos,
+                    const char* what) {
+  return glm::vec3(ParseFloat(f[first], pos, what), ParseFloat(f[first + 1], pos, what),
+                   ParseFloat(f[first + 2], pos, what));
+}
+
+std::string ReadWholeFile(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path, 0, "no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, 0, "not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw InputError(path, 0, "read error");
+  return ss.str();
+}
+
+}  // namespace kdrt

@@ -1,0 +1,238 @@
+// End-to-end tests of `kdrt sim` against `kdrt render`: the RTL core must
+// return bit-identical hit records for every generated scene and preset
+// format (the harness also checks each ray as it leaves), the memory timing
+// may change the cycles but never the answers, and options the scene cannot
+// run with are refused before anything is written.
+//
+// KDRT_LONG=1 renders every scene and preset at 512x512 instead of 24x24.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "fp/format.h"
+#include "trace/images.h"
+
+namespace kdrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+RunResult RunKdrt(const std::string& args) {
+  const std::string cmd = std::string(KDRT_BIN) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string ReadBytes(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+bool LongRun() {
+  const char* v = std::getenv("KDRT_LONG");
+  return v && std::string(v) == "1";
+}
+
+class SimCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    dir_ = fs::temp_directory_path() / ("kdrt_sim_" + name + "_" + std::to_string(getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+  size_t FileCount() const {
+    size_t n = 0;
+    for (const auto& e : fs::directory_iterator(dir_)) n += e.is_regular_file();
+    return n;
+  }
+
+  // Both hit buffers decode to the same bits and are the same bytes.
+  void ExpectSameHitBuffers(const std::string& a, const std::string& b) {
+    int aw = 0, ah = 0, bw = 0, bh = 0;
+    const std::vector<Hit> ha = ReadHitBuffer(a, &aw, &ah);
+    const std::vector<Hit> hb = ReadHitBuffer(b, &bw, &bh);
+    ASSERT_EQ(aw, bw);
+    ASSERT_EQ(ah, bh);
+    ASSERT_EQ(ha.size(), hb.size());
+    size_t hits = 0;
+    for (size_t i = 0; i < ha.size(); ++i) {
+      hits += ha[i].IsHit();
+      ASSERT_EQ(ha[i].prim, hb[i].prim) << "pixel " << i;
+      ASSERT_EQ(fp::BitsOf(ha[i].t), fp::BitsOf(hb[i].t)) << "pixel " << i;
+      ASSERT_EQ(fp::BitsOf(ha[i].u), fp::BitsOf(hb[i].u)) << "pixel " << i;
+      ASSERT_EQ(fp::BitsOf(ha[i].v), fp::BitsOf(hb[i].v)) << "pixel " << i;
+    }
+    EXPECT_GT(hits, 0u) << "a test that hits nothing checks little";
+    EXPECT_EQ(ReadBytes(a), ReadBytes(b)) << "EXR files differ in bytes";
+  }
+
+  nlohmann::json ReadJson(const std::string& path) {
+    std::ifstream f(path);
+    return nlohmann::json::parse(f);
+  }
+
+  fs::path dir_;
+};
+
+struct SceneCase {
+  const char* scene;
+  const char* format;
+};
+
+class SimMatchesRender : public SimCli, public ::testing::WithParamInterface<SceneCase> {};
+
+TEST_P(SimMatchesRender, HitBuffersAreIdentical) {
+  const SceneCase c = GetParam();
+  const std::string res = LongRun() ? "512x512" : "24x24";
+  const std::string common = std::string(c.scene) + " --res " + res + " --format " + c.format;
+  const RunResult r = RunKdrt("render " + common + " -q -o " + Path("render.png") + " --hits " + Path("render.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const RunResult s = RunKdrt("sim " + common + " -o " + Path("sim.png") + " --hits " + Path("sim.exr") + " --json " +
+                          Path("sim.json"));
+  ASSERT_EQ(s.exit_code, 0) << s.output;
+  ExpectSameHitBuffers(Path("render.exr"), Path("sim.exr"));
+  EXPECT_EQ(ReadBytes(Path("render.png")), ReadBytes(Path("sim.png")));
+  const nlohmann::json j = ReadJson(Path("sim.json"));
+  const uint64_t rays = j["rays"];
+  EXPECT_EQ(rays, LongRun() ? 512u * 512u : 24u * 24u);
+  EXPECT_GT(j["cycles"].get<uint64_t>(), 0u);
+  // Every ray went in and came out, as the core's own event counters saw it.
+  EXPECT_EQ(j["perf_counts"]["ray_in"].get<uint64_t>(), rays);
+  EXPECT_EQ(j["perf_counts"]["ray_out"].get<uint64_t>(), rays);
+  EXPECT_EQ(j["overflows"].get<uint64_t>(), 0u);
+  // The core cannot beat one node fetch or one test per cycle.
+  EXPECT_GE(j["cycles_per_ray"].get<double>(), j["bound_cycles_per_ray"].get<double>());
+}
+
+std::string CaseName(const ::testing::TestParamInfo<SceneCase>& info) {
+  std::string s = std::string(info.param.scene) + "_" + info.param.format;
+  for (char& ch : s) ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+  return s;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    GeneratedScenes, SimMatchesRender,
+    ::testing::Values(SceneCase{"gen:room:600", "fp32"}, SceneCase{"gen:room:600", "fp24"},
+                      SceneCase{"gen:room:600", "bf16"}, SceneCase{"gen:room:600", "fp16"},
+                      SceneCase{"gen:balls:800", "fp32"}, SceneCase{"gen:balls:800", "fp24"},
+                      SceneCase{"gen:balls:800", "bf16"}, SceneCase{"gen:balls:800", "fp16"},
+                      SceneCase{"gen:rings:800", "fp32"}, SceneCase{"gen:rings:800", "fp24"},
+                      SceneCase{"gen:rings:800", "bf16"}, SceneCase{"gen:rings:800", "fp16"},
+                      SceneCase{"gen:tetra:1000", "fp32"}, SceneCase{"gen:tetra:1000", "fp24"},
+                      SceneCase{"gen:tetra:1000", "bf16"}, SceneCase{"gen:tetra:1000", "fp16"},
+                      SceneCase{"gen:tree:2000", "fp32"}, SceneCase{"gen:tree:2000", "fp24"},
+                      SceneCase{"gen:tree:2000", "bf16"}, SceneCase{"gen:tree:2000", "fp16"}),
+    CaseName);
+
+// Rays aimed at the vertices and edges of a closed mesh, through a ray file.
+TEST_F(SimCli, RayFileMatchesRender) {
+  ASSERT_EQ(RunKdrt("rays --mesh sphere --size 6 --scene-out " + Path("sphere.nff") + " --rays-out " + Path("rays.bin"))
+                .exit_code,
+            0);
+  for (const char* format : {"fp32", "bf16"}) {
+    const std::string common = Path("sphere.nff") + " --rays " + Path("rays.bin") + " --format " + format;
+    const RunResult r = RunKdrt("render " + common + " -q --hits " + Path("render.exr"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const RunResult s = RunKdrt("sim " + common + " -q --hits " + Path("sim.exr"));
+    ASSERT_EQ(s.exit_code, 0) << s.output;
+    ExpectSameHitBuffers(Path("render.exr"), Path("sim.exr"));
+  }
+}
+
+// Slower, narrower memory: other cycles, the same answers.
+TEST_F(SimCli, MemoryTimingChangesCyclesNotHits) {
+  const std::string common = "gen:balls:500 --res 16x16 -q -o " + Path("x.png");
+  ASSERT_EQ(RunKdrt("sim " + common + " --hits " + Path("a.exr") + " --json " + Path("a.json")).exit_code, 0);
+  const RunResult slow = RunKdrt("sim " + common + " --mem-latency 80 --mem-bw 2.5 --hits " + Path("b.exr") +
+                             " --json " + Path("b.json"));
+  ASSERT_EQ(slow.exit_code, 0) << slow.output;
+  ExpectSameHitBuffers(Path("a.exr"), Path("b.exr"));
+  const nlohmann::json a = ReadJson(Path("a.json")), b = ReadJson(Path("b.json"));
+  EXPECT_GT(b["cycles"].get<uint64_t>(), a["cycles"].get<uint64_t>());
+  EXPECT_EQ(b["memory"]["latency"].get<int>(), 80);
+  EXPECT_LE(b["memory"]["bytes_per_cycle_used"].get<double>(), 2.5 + 1e-9);
+}
+
+TEST_F(SimCli, StackSmallerThanTheTreeIsRefused) {
+  const RunResult s = RunKdrt("sim gen:balls:500 --res 8x8 --stack-depth 2 -o " + Path("x.png") + " --hits " +
+                          Path("x.exr") + " --json " + Path("x.json"));
+  EXPECT_NE(s.exit_code, 0);
+  EXPECT_NE(s.output.find("--stack-depth >="), std::string::npos) << s.output;
+  EXPECT_EQ(FileCount(), 0u);
+}
+
+TEST_F(SimCli, SceneLargerThanTheMemoryIsRefused) {
+  const RunResult s = RunKdrt("sim gen:balls:500 --res 8x8 --mem-size 65536 -o " + Path("x.png"));
+  EXPECT_NE(s.exit_code, 0);
+  EXPECT_NE(s.output.find("memory image needs"), std::string::npos) << s.output;
+  const RunResult a = RunKdrt("sim gen:balls:500 --res 8x8 --addr-width 12 -o " + Path("x.png"));
+  EXPECT_NE(a.exit_code, 0);
+  EXPECT_NE(a.output.find("address width 12 is too small"), std::string::npos) << a.output;
+  EXPECT_EQ(FileCount(), 0u);
+}
+
+TEST_F(SimCli, ModelChoiceFollowsTheScene) {
+  const RunResult def = RunKdrt("sim gen:room:300 --which-model");
+  ASSERT_EQ(def.exit_code, 0) << def.output;
+  EXPECT_NE(def.output.find("(prebuilt)"), std::string::npos) << def.output;
+  // A cache override needs a model of its own, sized for the scene.
+  const RunResult own = RunKdrt("sim gen:room:300 --node-cache-lines 256 --which-model");
+  ASSERT_EQ(own.exit_code, 0) << own.output;
+  EXPECT_NE(own.output.find("scene-sized"), std::string::npos) << own.output;
+  EXPECT_NE(own.output.find("c256.64.64"), std::string::npos) << own.output;
+}
+
+TEST_F(SimCli, TraceWritesAnFstWaveform) {
+  const std::string common = "gen:room:300 --res 4x4 -q -o " + Path("x.png");
+  ASSERT_EQ(RunKdrt("sim " + common + " --trace " + Path("all.fst")).exit_code, 0);
+  ASSERT_EQ(RunKdrt("sim " + common + " --trace " + Path("one.fst") + " --trace-ray 5").exit_code, 0);
+  const std::string all = ReadBytes(Path("all.fst")), one = ReadBytes(Path("one.fst"));
+  ASSERT_GT(all.size(), 64u);
+  ASSERT_GT(one.size(), 64u);
+  EXPECT_EQ(all[0], 0) << "an FST file starts with its header block (type 0)";
+  EXPECT_LT(one.size(), all.size()) << "one ray's window is a part of the whole run";
+  EXPECT_NE(RunKdrt("sim " + common + " --trace-ray 5").exit_code, 0) << "--trace-ray needs --trace";
+}
+
+TEST_F(SimCli, CompareReportsTheFirstDifference) {
+  const std::string common = "gen:room:300 --res 8x8 -q -o " + Path("x.png");
+  ASSERT_EQ(RunKdrt("render " + common + " --hits " + Path("a.exr")).exit_code, 0);
+  ASSERT_EQ(RunKdrt("render " + common + " --hits " + Path("b.exr")).exit_code, 0);
+  const RunResult same = RunKdrt("compare " + Path("a.exr") + " " + Path("b.exr"));
+  EXPECT_EQ(same.exit_code, 0);
+  EXPECT_NE(same.output.find("identical"), std::string::npos);
+  int w = 0, h = 0;
+  std::vector<Hit> hits = ReadHitBuffer(Path("b.exr"), &w, &h);
+  hits[3 * w + 5].t = hits[3 * w + 5].t * 2.0f + 1.0f;
+  WriteHitBuffer(Path("c.exr"), w, h, hits);
+  const RunResult diff = RunKdrt("compare " + Path("a.exr") + " " + Path("c.exr"));
+  EXPECT_NE(diff.exit_code, 0);
+  EXPECT_NE(diff.output.find("pixel (5, 3)"), std::string::npos) << diff.output;
+}
+
+}  // namespace
+}  // namespace kdrt
