@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "oracle/embree_scene.h"
+#include "scene/nff_writer.h"
 #include "trace_test_util.h"
 
 namespace kdrt {
@@ -63,6 +64,48 @@ INSTANTIATE_TEST_SUITE_P(Generators, EmbreeOracle,
                                            OracleCase{"rings", 5000}, OracleCase{"tetra", 4000},
                                            OracleCase{"tree", 5000}),
                          [](const auto& info) { return std::string(info.param.generator); });
+
+}  // namespace
+}  // namespace kdrt
+
+namespace kdrt {
+namespace {
+
+// The same criteria on NFF files: the SPD-style example (polygons, a patch,
+// a tessellated sphere, cylinder and cone) and a generated scene written to
+// NFF and read back.
+void ExpectAgreesWithEmbree(const Scene& scene, int res) {
+  testing::Prepared p{Scene(scene)};
+  const ImageView image = p.view();
+  const EmbreeScene embree(p.scene, 1);
+  const std::vector<Ray> rays = testing::CameraRays(p.scene, res);
+  const std::vector<Hit> ours = TraceRays(image, rays, TraceOptions{});
+  size_t hitmiss = 0, ties = 0, t_bad = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Hit theirs = embree.Intersect(rays[i]);
+    if (ours[i].IsHit() != theirs.IsHit()) {
+      ++hitmiss;
+    } else if (ours[i].IsHit()) {
+      if (std::fabs(ours[i].t - theirs.t) > 1e-5f * std::fabs(theirs.t)) ++t_bad;
+      else if (ours[i].prim != theirs.prim) ++ties;
+    }
+  }
+  std::printf("[ oracle   ] %s: hit/miss disagree %zu of %zu, t disagree %zu, ties %zu\n", scene.source.c_str(),
+              hitmiss, rays.size(), t_bad, ties);
+  EXPECT_GE(1.0 - static_cast<double>(hitmiss) / rays.size(), 0.9999);
+  EXPECT_EQ(t_bad, 0u);
+}
+
+TEST(EmbreeOracleNff, SpdStyleExample) {
+  ExpectAgreesWithEmbree(LoadScene(std::string(KDRT_SOURCE_DIR) + "/scenes/simple.nff"), 200);
+}
+
+TEST(EmbreeOracleNff, GeneratedSceneThroughNff) {
+  const std::string path = ::testing::TempDir() + "/kdrt_oracle_balls.nff";
+  WriteNff(GenerateScene("balls", 8000), path);
+  ExpectAgreesWithEmbree(LoadScene(path), 200);
+  std::remove(path.c_str());
+}
 
 }  // namespace
 }  // namespace kdrt
