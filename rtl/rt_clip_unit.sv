@@ -45,13 +45,13 @@ module rt_clip_unit #(
   assign en = !out_valid_o || out_ready_i;
   assign in_ready_o = en;
 
-  logic [5:0]   v_conv, v_sub, v_mul;
-  logic [W-1:0] plane [6];
-  logic [W-1:0] o_conv [3];
-  logic [W-1:0] inv_conv [3];
-  logic [W-1:0] inv_sub [3];
-  logic [W-1:0] diff [6];
-  logic [W-1:0] tdist [6];  // 2i: near distance on axis i, 2i+1: far
+  // Flat vectors, not unpacked arrays: Yosys 0.23 silently drops logic wired
+  // through unpacked arrays on ports.
+  logic [5:0]     v_conv, v_sub, v_mul;
+  logic [6*W-1:0] plane;
+  logic [3*W-1:0] o_conv, inv_conv, inv_sub;
+  logic [6*W-1:0] diff;
+  logic [6*W-1:0] tdist;  // slot 2i: near distance on axis i, 2i+1: far
 
   // o and inv travel beside the conversion and the subtraction.
   for (genvar i = 0; i < 3; i++) begin : g_axis
@@ -63,26 +63,26 @@ module rt_clip_unit #(
 
     fp_from_f32 #(.E(E), .M(M)) u_near (
       .clk_i, .rst_ni, .en_i(en), .valid_i(in_valid_i), .f32_i(near_f32),
-      .valid_o(v_conv[2*i]), .res_o(plane[2*i])
+      .valid_o(v_conv[2*i]), .res_o(plane[W*(2*i) +: W])
     );
     fp_from_f32 #(.E(E), .M(M)) u_far (
       .clk_i, .rst_ni, .en_i(en), .valid_i(in_valid_i), .f32_i(far_f32),
-      .valid_o(v_conv[2*i+1]), .res_o(plane[2*i+1])
+      .valid_o(v_conv[2*i+1]), .res_o(plane[W*(2*i+1) +: W])
     );
     rt_delay #(.Width(2 * W), .Depth(LConv)) u_d1 (
-      .clk_i, .en_i(en), .d_i({in_o_i[W*i +: W], in_inv_i[W*i +: W]}), .q_o({o_conv[i], inv_conv[i]})
+      .clk_i, .en_i(en), .d_i({in_o_i[W*i +: W], in_inv_i[W*i +: W]}), .q_o({o_conv[W*i +: W], inv_conv[W*i +: W]})
     );
     rt_delay #(.Width(W), .Depth(LAdd)) u_d2 (
-      .clk_i, .en_i(en), .d_i(inv_conv[i]), .q_o(inv_sub[i])
+      .clk_i, .en_i(en), .d_i(inv_conv[W*i +: W]), .q_o(inv_sub[W*i +: W])
     );
     for (genvar k = 0; k < 2; k++) begin : g_side
       fp_add #(.E(E), .M(M)) u_sub (
-        .clk_i, .rst_ni, .en_i(en), .valid_i(v_conv[2*i+k]), .a_i(plane[2*i+k]), .b_i(o_conv[i]),
-        .sub_i(1'b1), .valid_o(v_sub[2*i+k]), .res_o(diff[2*i+k])
+        .clk_i, .rst_ni, .en_i(en), .valid_i(v_conv[2*i+k]), .a_i(plane[W*(2*i+k) +: W]), .b_i(o_conv[W*i +: W]),
+        .sub_i(1'b1), .valid_o(v_sub[2*i+k]), .res_o(diff[W*(2*i+k) +: W])
       );
       fp_mul #(.E(E), .M(M)) u_mul (
-        .clk_i, .rst_ni, .en_i(en), .valid_i(v_sub[2*i+k]), .a_i(diff[2*i+k]), .b_i(inv_sub[i]),
-        .valid_o(v_mul[2*i+k]), .res_o(tdist[2*i+k])
+        .clk_i, .rst_ni, .en_i(en), .valid_i(v_sub[2*i+k]), .a_i(diff[W*(2*i+k) +: W]), .b_i(inv_sub[W*i +: W]),
+        .valid_o(v_mul[2*i+k]), .res_o(tdist[W*(2*i+k) +: W])
       );
     end
   end
@@ -99,29 +99,29 @@ module rt_clip_unit #(
   /* verilator lint_on UNUSEDSIGNAL */
 
   // The compare-select chain: x, then y, then z.
-  logic [W-1:0] t0_chain [4] /* verilator split_var */;
-  logic [W-1:0] t1_chain [4] /* verilator split_var */;
-  assign t0_chain[0] = tmin_q;
-  assign t1_chain[0] = tmax_q;
+  logic [4*W-1:0] t0_chain /* verilator split_var */;
+  logic [4*W-1:0] t1_chain /* verilator split_var */;
+  assign t0_chain[0 +: W] = tmin_q;
+  assign t1_chain[0 +: W] = tmax_q;
   for (genvar i = 0; i < 3; i++) begin : g_chain
     logic near_later, far_earlier;
     fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_near (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(t0_chain[i]), .b_i(tdist[2*i]),
+      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(t0_chain[W*i +: W]), .b_i(tdist[W*(2*i) +: W]),
       .valid_o(), .lt_o(near_later), .le_o(), .eq_o(), .min_o(), .max_o()
     );
     fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_far (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(tdist[2*i+1]), .b_i(t1_chain[i]),
+      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(tdist[W*(2*i+1) +: W]), .b_i(t1_chain[W*i +: W]),
       .valid_o(), .lt_o(far_earlier), .le_o(), .eq_o(), .min_o(), .max_o()
     );
-    assign t0_chain[i+1] = near_later ? tdist[2*i] : t0_chain[i];
-    assign t1_chain[i+1] = far_earlier ? tdist[2*i+1] : t1_chain[i];
+    assign t0_chain[W*(i+1) +: W] = near_later ? tdist[W*(2*i) +: W] : t0_chain[W*i +: W];
+    assign t1_chain[W*(i+1) +: W] = far_earlier ? tdist[W*(2*i+1) +: W] : t1_chain[W*i +: W];
   end
   logic [W-1:0] t0_up_unused, t1_down_unused;
   fp_nudge #(.E(E), .M(M), .K(SlackUlps)) u_nudge_t0 (
-    .a_i(t0_chain[3]), .up_o(t0_up_unused), .down_o(out_t0_o)
+    .a_i(t0_chain[3*W +: W]), .up_o(t0_up_unused), .down_o(out_t0_o)
   );
   fp_nudge #(.E(E), .M(M), .K(SlackUlps)) u_nudge_t1 (
-    .a_i(t1_chain[3]), .up_o(out_t1_o), .down_o(t1_down_unused)
+    .a_i(t1_chain[3*W +: W]), .up_o(out_t1_o), .down_o(t1_down_unused)
   );
   /* verilator lint_off UNUSEDSIGNAL */
   logic unused_nudge;

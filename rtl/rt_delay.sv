@@ -15,6 +15,10 @@ module rt_delay #(
 
   if (Depth == 0) begin : g_wire
     assign q_o = d_i;
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic unused_clk;
+    assign unused_clk = clk_i ^ en_i;
+    /* verilator lint_on UNUSEDSIGNAL */
   end else begin : g_regs
     logic [Width-1:0] stage_q [Depth];
     always_ff @(posedge clk_i) begin

@@ -4,16 +4,16 @@
 // Exactly the model's operations, in its order and with its rounding
 // (sw/trace/intersect.h IntersectWatertight, docs/dataflow.md section 3),
 // for any (E, M); docs/isect-unit.md describes the stages:
-//   p[k][i] = load(v_k[i]) - o[i]
-//   x[k] = p[k][kx] - sx * p[k][kz];  y[k] = p[k][ky] - sy * p[k][kz]
+//   p[W*k +: W][i] = load(v_k[i]) - o[i]
+//   x[k] = p[W*k +: W][kx] - sx * p[W*k +: W][kz];  y[k] = p[W*k +: W][ky] - sy * p[W*k +: W][kz]
 //   e0 = x2*y1 - y2*x1; e1 = x0*y2 - y0*x2; e2 = x1*y0 - y1*x0
 //   miss if some e < 0 and some e > 0
 //   det = (e0 + e1) + e2; miss unless det < 0 or det > 0
-//   z[k] = sz * p[k][kz]; T = (e0*z0 + e1*z1) + e2*z2
+//   z[W*k +: W] = sz * p[W*k +: W][kz]; T = (e0*z0 + e1*z1) + e2*z2
 //   if det < 0: T, det, e1, e2 = -T, -det, -e1, -e2
 //   hit iff tmin*det <= T and T <= tmax*det
 //   r = 1 / det; t = T*r; u = e1*r; v = e2*r
-// Only the p[k][i] of the three axes kx, ky, kz are used, so the vertex and
+// Only the p[W*k +: W][i] of the three axes kx, ky, kz are used, so the vertex and
 // origin words are permuted before the subtraction (the same nine numbers).
 // The reciprocal and the t, u, v products are computed for every test; the
 // outputs are zero unless hit.
@@ -75,7 +75,7 @@ module rt_isect_unit #(
   // The schedule: the enabled cycle (after acceptance) at which each step
   // starts. Operands that arrive earlier wait in rt_delay lines.
   localparam int unsigned TSub    = LConv;           // p = load(v) - o
-  localparam int unsigned TShear  = TSub + LAdd;     // s * p[kz]
+  localparam int unsigned TShear  = TSub + LAdd;     // s * p[W*kz +: W]
   localparam int unsigned TXY     = TShear + LMul;   // x, y
   localparam int unsigned TEMul   = TXY + LAdd;      // edge products
   localparam int unsigned TESub   = TEMul + LMul;    // edge differences
@@ -116,105 +116,101 @@ module rt_isect_unit #(
   assign out_valid_o = vld[Latency];
 
   // ------------------------------------------------ load, p = load(v) - o
-  // Index 3*k + a: vertex k, a = 0 for the kx axis, 1 for ky, 2 for kz.
-  logic [31:0]  v_raw [9];
-  logic [W-1:0] v_load [9];
-  logic [W-1:0] o_perm [3];
-  logic [W-1:0] o_sub [3];
-  logic [W-1:0] p [9];
+  // Word 3*k + a: vertex k, a = 0 for the kx axis, 1 for ky, 2 for kz.
+  // Arrays of values are flat vectors of W-bit words (word i at [W*i +: W]):
+  // Yosys 0.23 loses unpacked-array words driven through port concatenations.
+  logic [287:0]  v_raw;
+  logic [9*W-1:0] v_load;
+  logic [3*W-1:0] o_perm;
+  logic [3*W-1:0] o_sub;
+  logic [9*W-1:0] p;
 
   for (genvar a = 0; a < 3; a++) begin : g_perm
     logic [1:0] axis;
     assign axis = a == 0 ? in_kx_i : a == 1 ? in_ky_i : in_kz_i;
-    always_comb begin
-      unique case (axis)
-        2'd0:    o_perm[a] = in_o_i[0 +: W];
-        2'd1:    o_perm[a] = in_o_i[W +: W];
-        default: o_perm[a] = in_o_i[2*W +: W];
-      endcase
-    end
+    assign o_perm[W*a +: W] = axis == 2'd0 ? in_o_i[0 +: W] :
+                              axis == 2'd1 ? in_o_i[W +: W] : in_o_i[2*W +: W];
     for (genvar k = 0; k < 3; k++) begin : g_vertex
-      always_comb begin
-        unique case (axis)
-          2'd0:    v_raw[3*k+a] = in_tri_i[96*k +: 32];
-          2'd1:    v_raw[3*k+a] = in_tri_i[96*k + 32 +: 32];
-          default: v_raw[3*k+a] = in_tri_i[96*k + 64 +: 32];
-        endcase
-      end
+      assign v_raw[32*(3*k+a) +: 32] = axis == 2'd0 ? in_tri_i[96*k +: 32] :
+                            axis == 2'd1 ? in_tri_i[96*k + 32 +: 32] : in_tri_i[96*k + 64 +: 32];
       fp_from_f32 #(.E(E), .M(M)) u_load (
-        .clk_i, .rst_ni, .en_i(en), .valid_i(vld[0]), .f32_i(v_raw[3*k+a]),
-        .valid_o(), .res_o(v_load[3*k+a])
+        .clk_i, .rst_ni, .en_i(en), .valid_i(vld[0]), .f32_i(v_raw[32*(3*k+a) +: 32]),
+        .valid_o(), .res_o(v_load[W*(3*k+a) +: W])
       );
       fp_add #(.E(E), .M(M)) u_p (
-        .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TSub]), .a_i(v_load[3*k+a]), .b_i(o_sub[a]),
-        .sub_i(1'b1), .valid_o(), .res_o(p[3*k+a])
+        .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TSub]), .a_i(v_load[W*(3*k+a) +: W]),
+        .b_i(o_sub[W*a +: W]), .sub_i(1'b1), .valid_o(), .res_o(p[W*(3*k+a) +: W])
       );
     end
   end
 
   rt_delay #(.Width(3 * W), .Depth(TSub)) u_d_o (
-    .clk_i, .en_i(en), .d_i({o_perm[2], o_perm[1], o_perm[0]}), .q_o({o_sub[2], o_sub[1], o_sub[0]})
+    .clk_i, .en_i(en), .d_i(o_perm), .q_o(o_sub)
   );
 
   // ------------------------------------------------ shear: x, y, z
-  logic [W-1:0] s_shear [3];  // sx, sy, sz at TShear
-  logic [W-1:0] sp [9];       // 3*k + a: s_a * p[k][kz]
-  logic [W-1:0] pxy [6];      // 2*k + a: p[k][kx], p[k][ky] at TXY
-  logic [W-1:0] xy [6];       // 2*k: x[k], 2*k + 1: y[k]
-  logic [W-1:0] z [3];        // z[k] at TE
+  logic [3*W-1:0] s_shear;  // sx, sy, sz at TShear
+  logic [9*W-1:0] sp;       // 3*k + a: s_a * p[W*k +: W][kz]
+  logic [6*W-1:0] pxy;      // 2*k + a: p[W*k +: W][kx], p[W*k +: W][ky] at TXY
+  logic [6*W-1:0] xy;       // 2*k: x[k], 2*k + 1: y[k]
+  logic [3*W-1:0] z;        // z[W*k +: W] at TE
 
   rt_delay #(.Width(3 * W), .Depth(TShear)) u_d_s (
-    .clk_i, .en_i(en), .d_i({in_sz_i, in_sy_i, in_sx_i}), .q_o({s_shear[2], s_shear[1], s_shear[0]})
+    .clk_i, .en_i(en), .d_i({in_sz_i, in_sy_i, in_sx_i}), .q_o(s_shear)
   );
 
   for (genvar k = 0; k < 3; k++) begin : g_shear
     for (genvar a = 0; a < 3; a++) begin : g_axis
       fp_mul #(.E(E), .M(M)) u_mul (
-        .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TShear]), .a_i(s_shear[a]), .b_i(p[3*k+2]),
-        .valid_o(), .res_o(sp[3*k+a])
+        .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TShear]), .a_i(s_shear[W*a +: W]),
+        .b_i(p[W*(3*k+2) +: W]),
+        .valid_o(), .res_o(sp[W*(3*k+a) +: W])
       );
     end
     rt_delay #(.Width(2 * W), .Depth(LMul)) u_d_pxy (
-      .clk_i, .en_i(en), .d_i({p[3*k+1], p[3*k]}), .q_o({pxy[2*k+1], pxy[2*k]})
+      .clk_i, .en_i(en), .d_i(p[W*3*k +: 2*W]), .q_o(pxy[W*2*k +: 2*W])
     );
     for (genvar a = 0; a < 2; a++) begin : g_xy
       fp_add #(.E(E), .M(M)) u_sub (
-        .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TXY]), .a_i(pxy[2*k+a]), .b_i(sp[3*k+a]),
-        .sub_i(1'b1), .valid_o(), .res_o(xy[2*k+a])
+        .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TXY]), .a_i(pxy[W*(2*k+a) +: W]),
+        .b_i(sp[W*(3*k+a) +: W]), .sub_i(1'b1), .valid_o(), .res_o(xy[W*(2*k+a) +: W])
       );
     end
     rt_delay #(.Width(W), .Depth(TE - TXY)) u_d_z (
-      .clk_i, .en_i(en), .d_i(sp[3*k+2]), .q_o(z[k])
+      .clk_i, .en_i(en), .d_i(sp[W*(3*k+2) +: W]), .q_o(z[W*k +: W])
     );
   end
 
   // ------------------------------------------------ edge functions
   // e_i = x[i+2]*y[i+1] - y[i+2]*x[i+1] (indices mod 3).
-  logic [W-1:0] e [3];
-  logic [W-1:0] eprod [6];  // 2*i: x[i+2]*y[i+1], 2*i + 1: y[i+2]*x[i+1]
+  logic [3*W-1:0] e;
+  logic [6*W-1:0] eprod;  // 2*i: x[i+2]*y[i+1], 2*i + 1: y[i+2]*x[i+1]
   logic [2:0]   e_neg, e_pos;
 
   for (genvar i = 0; i < 3; i++) begin : g_edge
     localparam int unsigned K2 = (i + 2) % 3;
     localparam int unsigned K1 = (i + 1) % 3;
     fp_mul #(.E(E), .M(M)) u_mul_a (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TEMul]), .a_i(xy[2*K2]), .b_i(xy[2*K1+1]),
-      .valid_o(), .res_o(eprod[2*i])
+      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TEMul]), .a_i(xy[W*(2*K2) +: W]),
+      .b_i(xy[W*(2*K1+1) +: W]),
+      .valid_o(), .res_o(eprod[W*(2*i) +: W])
     );
     fp_mul #(.E(E), .M(M)) u_mul_b (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TEMul]), .a_i(xy[2*K2+1]), .b_i(xy[2*K1]),
-      .valid_o(), .res_o(eprod[2*i+1])
+      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TEMul]), .a_i(xy[W*(2*K2+1) +: W]),
+      .b_i(xy[W*(2*K1) +: W]),
+      .valid_o(), .res_o(eprod[W*(2*i+1) +: W])
     );
     fp_add #(.E(E), .M(M)) u_sub (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TESub]), .a_i(eprod[2*i]), .b_i(eprod[2*i+1]),
-      .sub_i(1'b1), .valid_o(), .res_o(e[i])
+      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TESub]), .a_i(eprod[W*(2*i) +: W]),
+      .b_i(eprod[W*(2*i+1) +: W]),
+      .sub_i(1'b1), .valid_o(), .res_o(e[W*i +: W])
     );
     fp_cmp #(.E(E), .M(M), .Stages(0)) u_neg (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(e[i]), .b_i(Zero),
+      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(e[W*i +: W]), .b_i(Zero),
       .valid_o(), .lt_o(e_neg[i]), .le_o(), .eq_o(), .min_o(), .max_o()
     );
     fp_cmp #(.E(E), .M(M), .Stages(0)) u_pos (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(Zero), .b_i(e[i]),
+      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(Zero), .b_i(e[W*i +: W]),
       .valid_o(), .lt_o(e_pos[i]), .le_o(), .eq_o(), .min_o(), .max_o()
     );
   end
@@ -227,37 +223,37 @@ module rt_isect_unit #(
 
   // ------------------------------------------------ det and T
   logic [W-1:0] e01, e2_det_add, det;
-  logic [W-1:0] ez [3];
+  logic [3*W-1:0] ez;
   logic [W-1:0] ez01, ez2_add2, t_scaled;
   logic [W-1:0] e1_det, e2_det;
 
   fp_add #(.E(E), .M(M)) u_e01 (
-    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TE]), .a_i(e[0]), .b_i(e[1]),
+    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TE]), .a_i(e[W*0 +: W]), .b_i(e[W*1 +: W]),
     .sub_i(1'b0), .valid_o(), .res_o(e01)
   );
   rt_delay #(.Width(W), .Depth(TDetAdd - TE)) u_d_e2 (
-    .clk_i, .en_i(en), .d_i(e[2]), .q_o(e2_det_add)
+    .clk_i, .en_i(en), .d_i(e[W*2 +: W]), .q_o(e2_det_add)
   );
   fp_add #(.E(E), .M(M)) u_det (
     .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TDetAdd]), .a_i(e01), .b_i(e2_det_add),
     .sub_i(1'b0), .valid_o(), .res_o(det)
   );
   rt_delay #(.Width(2 * W), .Depth(TDet - TE)) u_d_e12 (
-    .clk_i, .en_i(en), .d_i({e[2], e[1]}), .q_o({e2_det, e1_det})
+    .clk_i, .en_i(en), .d_i({e[W*2 +: W], e[W*1 +: W]}), .q_o({e2_det, e1_det})
   );
 
   for (genvar k = 0; k < 3; k++) begin : g_ez
     fp_mul #(.E(E), .M(M)) u_mul (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TE]), .a_i(e[k]), .b_i(z[k]),
-      .valid_o(), .res_o(ez[k])
+      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TE]), .a_i(e[W*k +: W]), .b_i(z[W*k +: W]),
+      .valid_o(), .res_o(ez[W*k +: W])
     );
   end
   fp_add #(.E(E), .M(M)) u_t01 (
-    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TTAdd1]), .a_i(ez[0]), .b_i(ez[1]),
+    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TTAdd1]), .a_i(ez[W*0 +: W]), .b_i(ez[W*1 +: W]),
     .sub_i(1'b0), .valid_o(), .res_o(ez01)
   );
   rt_delay #(.Width(W), .Depth(TTAdd2 - TTAdd1)) u_d_ez2 (
-    .clk_i, .en_i(en), .d_i(ez[2]), .q_o(ez2_add2)
+    .clk_i, .en_i(en), .d_i(ez[W*2 +: W]), .q_o(ez2_add2)
   );
   fp_add #(.E(E), .M(M)) u_t (
     .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TTAdd2]), .a_i(ez01), .b_i(ez2_add2),
@@ -427,11 +423,13 @@ module rt_isect_unit #(
     end else begin
       if (in_wait_q) begin
         assert (in_valid_i) else $error("rt_isect_unit: in_valid_i fell before in_ready_o");
-        assert (in_payload == in_payload_q) else $error("rt_isect_unit: input changed before in_ready_o");
+        assert (in_payload == in_payload_q)
+          else $error("rt_isect_unit: input changed before in_ready_o");
       end
       if (out_wait_q) begin
         assert (out_valid_o) else $error("rt_isect_unit: out_valid_o fell before out_ready_i");
-        assert (out_payload == out_payload_q) else $error("rt_isect_unit: output changed before out_ready_i");
+        assert (out_payload == out_payload_q)
+          else $error("rt_isect_unit: output changed before out_ready_i");
       end
       in_wait_q <= in_valid_i && !in_ready_o;
       out_wait_q <= out_valid_o && !out_ready_i;

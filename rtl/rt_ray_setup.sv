@@ -83,38 +83,39 @@ module rt_ray_setup #(
 
   // ------------------------------------------------ load
   // Words 0..2: o, 3..5: d, 6: tmin, 7: tmax.
+  // Value arrays are flat vectors of W-bit words (word i at [W*i +: W]).
   logic [255:0] raw;
-  logic [W-1:0] val [8];
+  logic [8*W-1:0] val;
   assign raw = in_ray_i;
   for (genvar j = 0; j < 8; j++) begin : g_load
     fp_from_f32 #(.E(E), .M(M)) u_load (
       .clk_i, .rst_ni, .en_i(en), .valid_i(vld[0]), .f32_i(raw[32*j +: 32]),
-      .valid_o(), .res_o(val[j])
+      .valid_o(), .res_o(val[W*j +: W])
     );
   end
 
   // ------------------------------------------------ 1 / d, comparisons
-  logic [W-1:0] inv [3];
-  logic [W-1:0] abs_d [3];
+  logic [3*W-1:0] inv;
+  logic [3*W-1:0] abs_d;
   for (genvar i = 0; i < 3; i++) begin : g_inv
     fp_div #(.E(E), .M(M)) u_div (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(One), .b_i(val[3+i]),
-      .valid_o(), .res_o(inv[i])
+      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(One), .b_i(val[W*(3+i) +: W]),
+      .valid_o(), .res_o(inv[W*i +: W])
     );
-    assign abs_d[i] = {1'b0, val[3+i][W-2:0]};
+    assign abs_d[W*i +: W] = {1'b0, val[W*(3+i) +: W-1]};
   end
 
   logic lt01, lt02, lt12;
   fp_cmp #(.E(E), .M(M), .Stages(LCmp)) u_cmp01 (
-    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(abs_d[0]), .b_i(abs_d[1]),
+    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(abs_d[W*0 +: W]), .b_i(abs_d[W*1 +: W]),
     .valid_o(), .lt_o(lt01), .le_o(), .eq_o(), .min_o(), .max_o()
   );
   fp_cmp #(.E(E), .M(M), .Stages(LCmp)) u_cmp02 (
-    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(abs_d[0]), .b_i(abs_d[2]),
+    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(abs_d[W*0 +: W]), .b_i(abs_d[W*2 +: W]),
     .valid_o(), .lt_o(lt02), .le_o(), .eq_o(), .min_o(), .max_o()
   );
   fp_cmp #(.E(E), .M(M), .Stages(LCmp)) u_cmp12 (
-    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(abs_d[1]), .b_i(abs_d[2]),
+    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(abs_d[W*1 +: W]), .b_i(abs_d[W*2 +: W]),
     .valid_o(), .lt_o(lt12), .le_o(), .eq_o(), .min_o(), .max_o()
   );
 
@@ -122,25 +123,25 @@ module rt_ray_setup #(
   logic [8*W-1:0] val_axis, val_out;
   rt_delay #(.Width(8 * W), .Depth(LCmp)) u_d_val (
     .clk_i, .en_i(en),
-    .d_i({val[7], val[6], val[5], val[4], val[3], val[2], val[1], val[0]}),
+    .d_i(val),
     .q_o(val_axis)
   );
 
   // ------------------------------------------------ axis choice, shear
   logic [1:0]   kz, kx0, ky0, kx, ky;
-  logic [W-1:0] dk [3];  // d[0..2] at TAxis
+  logic [3*W-1:0] dk;  // d[0..2] at TAxis
   logic [W-1:0] d_kx, d_ky, d_kz;
   for (genvar i = 0; i < 3; i++) begin : g_dk
-    assign dk[i] = val_axis[W*(3+i) +: W];
+    assign dk[W*i +: W] = val_axis[W*(3+i) +: W];
   end
   assign kz = lt01 ? (lt12 ? 2'd2 : 2'd1) : (lt02 ? 2'd2 : 2'd0);
   assign kx0 = kz == 2'd2 ? 2'd0 : kz + 2'd1;
   assign ky0 = kx0 == 2'd2 ? 2'd0 : kx0 + 2'd1;
   always_comb begin
     unique case (kz)
-      2'd0:    d_kz = dk[0];
-      2'd1:    d_kz = dk[1];
-      default: d_kz = dk[2];
+      2'd0:    d_kz = dk[W*0 +: W];
+      2'd1:    d_kz = dk[W*1 +: W];
+      default: d_kz = dk[W*2 +: W];
     endcase
   end
   // Swapping kx and ky for a negative d[kz] keeps the triangle winding.
@@ -148,14 +149,14 @@ module rt_ray_setup #(
   assign ky = d_kz[W-1] ? kx0 : ky0;
   always_comb begin
     unique case (kx)
-      2'd0:    d_kx = dk[0];
-      2'd1:    d_kx = dk[1];
-      default: d_kx = dk[2];
+      2'd0:    d_kx = dk[W*0 +: W];
+      2'd1:    d_kx = dk[W*1 +: W];
+      default: d_kx = dk[W*2 +: W];
     endcase
     unique case (ky)
-      2'd0:    d_ky = dk[0];
-      2'd1:    d_ky = dk[1];
-      default: d_ky = dk[2];
+      2'd0:    d_ky = dk[W*0 +: W];
+      2'd1:    d_ky = dk[W*1 +: W];
+      default: d_ky = dk[W*2 +: W];
     endcase
   end
 
@@ -178,7 +179,7 @@ module rt_ray_setup #(
   // inv_d is ready one stage (LCmp) before the rest.
   logic [3*W-1:0] inv_out;
   rt_delay #(.Width(3 * W), .Depth(LCmp)) u_d_inv (
-    .clk_i, .en_i(en), .d_i({inv[2], inv[1], inv[0]}), .q_o(inv_out)
+    .clk_i, .en_i(en), .d_i(inv), .q_o(inv_out)
   );
   rt_delay #(.Width(TagWidth), .Depth(Latency)) u_d_tag (
     .clk_i, .en_i(en), .d_i(in_tag_i), .q_o(out_tag_o)
@@ -213,11 +214,13 @@ module rt_ray_setup #(
     end else begin
       if (in_wait_q) begin
         assert (in_valid_i) else $error("rt_ray_setup: in_valid_i fell before in_ready_o");
-        assert (in_payload == in_payload_q) else $error("rt_ray_setup: input changed before in_ready_o");
+        assert (in_payload == in_payload_q)
+          else $error("rt_ray_setup: input changed before in_ready_o");
       end
       if (out_wait_q) begin
         assert (out_valid_o) else $error("rt_ray_setup: out_valid_o fell before out_ready_i");
-        assert (out_payload == out_payload_q) else $error("rt_ray_setup: output changed before out_ready_i");
+        assert (out_payload == out_payload_q)
+          else $error("rt_ray_setup: output changed before out_ready_i");
       end
       in_wait_q <= in_valid_i && !in_ready_o;
       out_wait_q <= out_valid_o && !out_ready_i;

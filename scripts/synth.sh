@@ -14,14 +14,15 @@ OUT_MD="$ROOT/docs/synth-table.md"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 
-UNITS=(fp_add fp_mul fp_div fp_cmp fp_from_f32 fp_to_f32)
+UNITS=(fp_add fp_mul fp_div fp_cmp fp_from_f32 fp_to_f32 fp_nudge rt_trav_unit rt_clip_unit
+       rt_ray_setup rt_isect_unit)
 FORMATS=(fp32:8:23 fp24:7:16 bf16:8:7 fp16:5:10)
 
 run_one() {  # run_one <unit> <name> <E> <M>: writes $WORK/<unit>_<name>.{log,row}
   local unit="$1" name="$2" e="$3" m="$4"
   local log="$WORK/${unit}_${name}.log"
   if ! "$YOSYS" -q -l "$log" -p "
-      read_verilog -sv $RTL/kdrt_fp_pkg.sv $RTL/fp_round.sv $RTL/$unit.sv
+      read_verilog -sv $RTL/kdrt_fp_pkg.sv $RTL/kdrt_pkg.sv $(ls $RTL/*.sv | grep -v _pkg.sv | tr '\n' ' ')
       chparam -set E $e -set M $m $unit
       synth -flatten -top $unit
       select -assert-none t:\$*latch* t:\$_DLATCH* t:\$_SR_* t:\$sr
@@ -57,6 +58,11 @@ latency() {  # documented latency of <unit> for mantissa bits <m>
     fp_cmp) echo 1 ;;
     fp_from_f32) echo 1 ;;
     fp_to_f32) echo 0 ;;
+    fp_nudge) echo 0 ;;
+    rt_trav_unit) echo 8 ;;
+    rt_clip_unit) echo 8 ;;
+    rt_ray_setup) echo $(($2 + 6)) ;;
+    rt_isect_unit) echo $(($2 + 34)) ;;
   esac
 }
 
