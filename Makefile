@@ -1,5 +1,6 @@
 # kdrt top-level targets: thin wrappers, as in lowRISC ibex.
-#   make demo       render the default scene (installs what is missing)
+#   make demo       render the default scene, simulate the RTL core on it and
+#                   compare the hit buffers (installs what is missing)
 #   make test       build and run every test (installs what is missing)
 #   make test-long  the long variants (more random vectors, larger images)
 #   make lint       verilator --lint-only -Wall on the RTL
@@ -8,6 +9,8 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 DEMO_SCENE ?= scenes/room.nff
+# The RTL simulation of the demo (kdrt sim) runs at this resolution.
+DEMO_SIM_RES ?= 128x128
 KDRT := $(BUILD)/bin/kdrt
 
 .PHONY: all deps configure build demo test test-long lint synth bench clean
@@ -25,7 +28,13 @@ build: configure
 
 demo: build
 	@mkdir -p out
-	$(KDRT) render $(DEMO_SCENE) -o out/demo.png --hits out/demo-hits.exr --json out/demo.json
+	@scene="$(DEMO_SCENE)"; case "$$scene" in gen:*) ;; *) test -f "$$scene" || scene=gen:room:2000;; esac; \
+	set -e; set -x; \
+	$(KDRT) render "$$scene" -o out/demo.png --hits out/demo-hits.exr --json out/demo.json; \
+	$(KDRT) render "$$scene" --res $(DEMO_SIM_RES) -q -o out/demo-small.png --hits out/demo-small-hits.exr; \
+	$(KDRT) sim "$$scene" --res $(DEMO_SIM_RES) -o out/demo-sim.png --hits out/demo-sim-hits.exr \
+	  --json out/demo-sim.json; \
+	$(KDRT) compare out/demo-small-hits.exr out/demo-sim-hits.exr
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)

@@ -44,7 +44,7 @@ void SetWide(uint32_t* words, int count, const uint32_t* values) {
 }  // namespace
 
 CoreHarness::CoreHarness(Vrt_core& top, const ImageView& image, const std::vector<Ray>& rays,
-                         const std::vector<Hit>& reference, MemoryModel& memory, const HarnessOptions& options)
+                         const std::vector<Hit>& reference, MemoryPort& memory, const HarnessOptions& options)
     : top_(top), image_(image), rays_(rays), reference_(reference), memory_(memory), options_(options) {
   result_.hits.assign(rays.size(), Hit{});
   result_.overflow.assign(rays.size(), 0);

@@ -59,7 +59,7 @@ class CoreHarness {
   // `reference` holds the model's hit for every ray (TraceRays with the same
   // format). The harness keeps references to every argument.
   CoreHarness(Vrt_core& top, const ImageView& image, const std::vector<Ray>& rays,
-              const std::vector<Hit>& reference, MemoryModel& memory, const HarnessOptions& options);
+              const std::vector<Hit>& reference, MemoryPort& memory, const HarnessOptions& options);
 
   // Static inputs (bases, bounds) and idle streams; call before reset.
   void Configure();
@@ -85,7 +85,7 @@ class CoreHarness {
   const ImageView& image_;
   const std::vector<Ray>& rays_;
   const std::vector<Hit>& reference_;
-  MemoryModel& memory_;
+  MemoryPort& memory_;
   HarnessOptions options_;
   HarnessResult result_;
   std::vector<uint8_t> received_flag_;

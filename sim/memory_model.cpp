@@ -22,11 +22,11 @@ MemoryModel::MemoryModel(const MemoryConfig& config) : config_(config) {
   if (!(config.bytes_per_cycle > 0) || !std::isfinite(config.bytes_per_cycle)) {
     throw std::invalid_argument("memory model: bandwidth must be a positive number of bytes per cycle");
   }
-  // The bucket holds at least one beat, so any positive rate makes progress,
-  // and no more than one cycle's worth beyond that, so an idle memory cannot
-  // save up a burst faster than the port.
-  max_tokens_ = std::max<double>(kBeatBytes, config.bytes_per_cycle);
-  tokens_ = max_tokens_;
+  // The bucket holds one beat plus one cycle's refill: the remainder left
+  // after a beat is never lost (so a fractional rate averages exactly), and an
+  // idle memory cannot save up more than about one extra beat.
+  max_tokens_ = kBeatBytes + config.bytes_per_cycle;
+  tokens_ = kBeatBytes;
 }
 
 void MemoryModel::LoadImage(const std::vector<uint8_t>& bytes) {

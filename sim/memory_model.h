@@ -42,7 +42,17 @@ struct MemoryResponse {
   uint8_t data[kBeatBytes] = {};
 };
 
-class MemoryModel {
+// What the core harness needs of a memory: the model below, or a SystemC
+// module wrapping it (sim/sc_top.cpp).
+class MemoryPort {
+ public:
+  virtual ~MemoryPort() = default;
+  virtual void Request(uint64_t addr, uint8_t tag, uint64_t cycle) = 0;
+  virtual bool Respond(uint64_t cycle, MemoryResponse* out) = 0;
+  virtual size_t outstanding() const = 0;
+};
+
+class MemoryModel : public MemoryPort {
  public:
   // Throws std::invalid_argument on a zero size, a latency of 0 or a
   // bandwidth that is not positive and finite.
@@ -54,16 +64,16 @@ class MemoryModel {
 
   // A read of the 16 bytes at `addr` (16-byte aligned), accepted in cycle
   // `cycle`. Throws MemoryError outside the memory or when misaligned.
-  void Request(uint64_t addr, uint8_t tag, uint64_t cycle);
+  void Request(uint64_t addr, uint8_t tag, uint64_t cycle) override;
 
   // Advances to cycle `cycle` (call once per cycle, increasing) and returns
   // true with the beat to drive on the response port this cycle, if any.
-  bool Respond(uint64_t cycle, MemoryResponse* out);
+  bool Respond(uint64_t cycle, MemoryResponse* out) override;
 
   const MemoryConfig& config() const { return config_; }
   uint64_t bytes_read() const { return bytes_read_; }
   uint64_t requests() const { return requests_; }
-  size_t outstanding() const { return queue_.size(); }
+  size_t outstanding() const override { return queue_.size(); }
   uint64_t max_outstanding() const { return max_outstanding_; }
 
  private:

@@ -69,6 +69,10 @@ void AddSimOptions(CLI::App& cmd, SimArgs& a) {
   cmd.add_flag("--progress", a.progress, "Progress line on stderr (default: when stderr is a terminal)");
   cmd.add_flag("-q,--quiet", a.quiet, "No report on stdout");
   cmd.add_flag("--systemc", a.systemc, "Run the core inside the SystemC top");
+  // Hidden: lets the tests see the co-simulation checker fire.
+  cmd.add_option("--corrupt-reference", a.corrupt_reference,
+                 "Test hook: change the expected record of ray K so the checker must report it")
+      ->group("");
   cmd.add_flag("--which-model", a.which_model, "Print the model the scene needs and whether it is built; run nothing");
 }
 

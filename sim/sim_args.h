@@ -35,6 +35,7 @@ struct SimArgs {
   bool quiet = false;
   bool systemc = false;
   bool which_model = false;    // print the model choice and stop
+  int64_t corrupt_reference = -1;  // test hook: falsify the reference of this ray
 };
 
 void AddSimOptions(CLI::App& cmd, SimArgs& args);

@@ -85,7 +85,15 @@ int Run(const SimArgs& args) {
   to.format = format;
   TraceStats ts;
   std::vector<RayCounters> per_ray;
-  const std::vector<Hit> reference = TraceRays(image, rays, to, &ts, &per_ray);
+  std::vector<Hit> reference = TraceRays(image, rays, to, &ts, &per_ray);
+  if (args.corrupt_reference >= 0 && args.corrupt_reference < static_cast<int64_t>(rays.size())) {
+    Hit& h = reference[args.corrupt_reference];
+    if (h.IsHit()) {
+      h.t = fp::FloatOf(fp::BitsOf(h.t) ^ 1u);
+    } else {
+      h = Hit{1.0f, 0, 0.0f, 0.0f};
+    }
+  }
 
   RunSpec spec;
   spec.image = &image;
@@ -181,7 +189,8 @@ int Run(const SimArgs& args) {
 }  // namespace kdrt::sim
 
 #ifdef KDRT_SIM_SYSTEMC
-int sc_main(int argc, char** argv) {
+// libsystemc provides main() and calls this (declared extern "C" there).
+extern "C" int sc_main(int argc, char** argv) {
 #else
 int main(int argc, char** argv) {
 #endif

@@ -116,12 +116,14 @@ void BuildModel(const sim::ConfigChoice& choice, const ModelLocation& loc) {
   }
   const std::string log = (models_dir / (choice.config.Key() + ".build.log")).string();
   std::fprintf(stderr,
-               "kdrt sim: building the simulation model %s (Verilator, once; roughly 2-4 minutes on 2 cores)\n"
+               "kdrt sim: building the simulation model %s (Verilator, once; about 1-2 minutes on 2 cores)\n"
                "kdrt sim: log in %s\n",
                choice.config.Key().c_str(), log.c_str());
   const auto start = std::chrono::steady_clock::now();
-  const std::string cmd = std::string("'") + KDRT_CMAKE_COMMAND + "' --build '" + kBuildDir + "' --target " +
-                          loc.target + " -j 2 > '" + log + "' 2>&1";
+  // Configure first: the new line in models.txt defines the target.
+  const std::string cmake = std::string("'") + KDRT_CMAKE_COMMAND + "'";
+  const std::string cmd = cmake + " '" + kBuildDir + "' > '" + log + "' 2>&1 && " + cmake + " --build '" +
+                          kBuildDir + "' --target " + loc.target + " -j 2 >> '" + log + "' 2>&1";
   const int rc = std::system(cmd.c_str());
   if (rc != 0 || !fs::exists(loc.path)) {
     throw std::runtime_error("building the simulation model " + choice.config.Key() + " failed; the end of " + log +
@@ -132,7 +134,8 @@ void BuildModel(const sim::ConfigChoice& choice, const ModelLocation& loc) {
 #else
   (void)choice;
   (void)loc;
-  throw InputError("kdrt sim: this kdrt was built without Verilator, so it has no simulation models");
+  throw InputError("kdrt sim: no simulation models in this build: Verilator was not found, or rtl/rt_core.sv did "
+                   "not elaborate when CMake last configured (see its warning; re-run cmake)");
 #endif
 }
 
@@ -161,6 +164,8 @@ int RunSim(const sim::SimArgs& args) {
   argv.push_back(const_cast<char*>(loc.path.c_str()));
   for (std::string& a : model_args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // Models with SystemC linked in would print its banner on stdout.
+  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
   std::fflush(stdout);
   std::fflush(stderr);
   execv(loc.path.c_str(), argv.data());

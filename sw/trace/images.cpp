@@ -40,6 +40,7 @@ void WriteRgbImage(const std::string& path, int width, int height, const std::ve
     pixels[i] = static_cast<unsigned char>(std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 255.0f));
   }
   OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("DateTime", "1970:01:01 00:00:00");  // deterministic bytes
   if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close()) {
     throw InputError(path, 0, "cannot write image: " + out->geterror());
   }
@@ -62,6 +63,9 @@ void WriteHitBuffer(const std::string& path, int width, int height, const std::v
   spec.channelformats = {OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::UINT32, OIIO::TypeDesc::FLOAT,
                          OIIO::TypeDesc::FLOAT};
   spec.attribute("compression", "zip");
+  // OpenImageIO stamps the write time unless told otherwise; a fixed value
+  // keeps hit buffers byte-identical between runs (and between render and sim).
+  spec.attribute("DateTime", "1970:01:01 00:00:00");
   std::vector<HitPixel> pixels(hits.size());
   for (size_t i = 0; i < hits.size(); ++i) pixels[i] = {hits[i].t, hits[i].prim, hits[i].u, hits[i].v};
   if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UNKNOWN, pixels.data(), sizeof(HitPixel)) ||

@@ -103,6 +103,8 @@ struct SceneCase {
   const char* format;
 };
 
+void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.scene << " " << c.format; }
+
 class SimMatchesRender : public SimCli, public ::testing::WithParamInterface<SceneCase> {};
 
 TEST_P(SimMatchesRender, HitBuffersAreIdentical) {
@@ -175,6 +177,43 @@ TEST_F(SimCli, MemoryTimingChangesCyclesNotHits) {
   EXPECT_GT(b["cycles"].get<uint64_t>(), a["cycles"].get<uint64_t>());
   EXPECT_EQ(b["memory"]["latency"].get<int>(), 80);
   EXPECT_LE(b["memory"]["bytes_per_cycle_used"].get<double>(), 2.5 + 1e-9);
+}
+
+// The SystemC top ticks the same core and memory model: same hits, same cycles.
+TEST_F(SimCli, SystemCLoopGivesTheSameCyclesAndHits) {
+  const std::string common = "gen:tetra:300 --res 12x12 --format bf16 -o " + Path("x.png");
+  ASSERT_EQ(RunKdrt("sim " + common + " -q --hits " + Path("a.exr") + " --json " + Path("a.json")).exit_code, 0);
+  const RunResult sc = RunKdrt("sim " + common + " --systemc --hits " + Path("b.exr") + " --json " + Path("b.json"));
+  ASSERT_EQ(sc.exit_code, 0) << sc.output;
+  EXPECT_EQ(sc.output.find("Copyright"), std::string::npos) << "no SystemC banner";
+  ExpectSameHitBuffers(Path("a.exr"), Path("b.exr"));
+  const nlohmann::json a = ReadJson(Path("a.json")), b = ReadJson(Path("b.json"));
+  EXPECT_EQ(a["loop"], "verilator");
+  EXPECT_EQ(b["loop"], "systemc");
+  EXPECT_EQ(a["cycles"], b["cycles"]);
+  EXPECT_EQ(a["perf_counts"], b["perf_counts"]);
+}
+
+// The checker stops at the first record that differs from the (here
+// deliberately falsified) reference and says what it knows.
+TEST_F(SimCli, MismatchStopsTheRunWithTheRayAndThePath) {
+  const RunResult s = RunKdrt("sim gen:room:300 --res 8x8 --corrupt-reference 27 -o " + Path("x.png") +
+                              " --hits " + Path("x.exr"));
+  EXPECT_EQ(s.exit_code, 3) << s.output;
+  EXPECT_NE(s.output.find("co-simulation mismatch"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("ray 27\n"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("model node path"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("RTL:"), std::string::npos) << s.output;
+  EXPECT_EQ(FileCount(), 0u);
+}
+
+TEST_F(SimCli, TimeoutNamesTheRaysInFlight) {
+  // No ray can come back within 5 cycles (the memory alone takes 20).
+  const RunResult s = RunKdrt("sim gen:room:300 --res 4x4 --timeout 5 -o " + Path("x.png"));
+  EXPECT_EQ(s.exit_code, 3) << s.output;
+  EXPECT_NE(s.output.find("timeout: no hit record for 5 cycles"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("rays in flight: 0"), std::string::npos) << s.output;
+  EXPECT_EQ(FileCount(), 0u);
 }
 
 TEST_F(SimCli, StackSmallerThanTheTreeIsRefused) {
