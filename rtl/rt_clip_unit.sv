@@ -6,7 +6,8 @@
 //   t0 = tmin; t1 = tmax; for i = x, y, z: if t0 < tn: t0 = tn; if tf < t1: t1 = tf
 //   t0 = nudge_down(t0); t1 = nudge_up(t1)      (conservative cells, fp_nudge)
 //   miss = t1 < t0
-// Latency = FpFromF32Latency + FpAddLatency + FpMulLatency cycles.
+// Latency = FpFromF32Latency + FpAddLatency + FpMulLatency + 3 cycles (one
+// register per axis of the compare-select chain).
 `default_nettype none
 // Unused outputs of the shared fp_cmp are left open on purpose.
 /* verilator lint_off PINCONNECTEMPTY */
@@ -87,35 +88,63 @@ module rt_clip_unit #(
     end
   end
 
-  logic [W-1:0] tmin_q, tmax_q;
+  logic [TagWidth-1:0] tag_mul;
+  logic [W-1:0]        tmin_q, tmax_q;
   rt_delay #(.Width(TagWidth + 2 * W), .Depth(LConv + LAdd + LMul)) u_side (
-    .clk_i, .en_i(en), .d_i({in_tag_i, in_tmin_i, in_tmax_i}), .q_o({out_tag_o, tmin_q, tmax_q})
+    .clk_i, .en_i(en), .d_i({in_tag_i, in_tmin_i, in_tmax_i}), .q_o({tag_mul, tmin_q, tmax_q})
   );
   // All six distances advance together; one valid bit speaks for them.
-  assign out_valid_o = v_mul[0];
   /* verilator lint_off UNUSEDSIGNAL */
   logic unused_valid;
   assign unused_valid = ^v_mul[5:1];
   /* verilator lint_on UNUSEDSIGNAL */
 
-  // The compare-select chain: x, then y, then z.
-  logic [4*W-1:0] t0_chain /* verilator split_var */;
-  logic [4*W-1:0] t1_chain /* verilator split_var */;
+  // The compare-select chain, x then y then z, one register stage per axis so
+  // that only one comparison lies between registers. Axis i's distances wait
+  // i stages for their turn.
+  logic [3:0]            chain_valid;
+  logic [4*TagWidth-1:0] chain_tag;
+  logic [4*W-1:0]        t0_chain, t1_chain;
+  assign chain_valid[0] = v_mul[0];
+  assign chain_tag[0 +: TagWidth] = tag_mul;
   assign t0_chain[0 +: W] = tmin_q;
   assign t1_chain[0 +: W] = tmax_q;
   for (genvar i = 0; i < 3; i++) begin : g_chain
+    logic [2*W-1:0] axis_dist;
+    rt_delay #(.Width(2 * W), .Depth(i)) u_wait (
+      .clk_i, .en_i(en), .d_i(tdist[W*2*i +: 2*W]), .q_o(axis_dist)
+    );
     logic near_later, far_earlier;
     fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_near (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(t0_chain[W*i +: W]), .b_i(tdist[W*(2*i) +: W]),
+      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(t0_chain[W*i +: W]), .b_i(axis_dist[0 +: W]),
       .valid_o(), .lt_o(near_later), .le_o(), .eq_o(), .min_o(), .max_o()
     );
     fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_far (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(tdist[W*(2*i+1) +: W]), .b_i(t1_chain[W*i +: W]),
+      .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(axis_dist[W +: W]), .b_i(t1_chain[W*i +: W]),
       .valid_o(), .lt_o(far_earlier), .le_o(), .eq_o(), .min_o(), .max_o()
     );
-    assign t0_chain[W*(i+1) +: W] = near_later ? tdist[W*(2*i) +: W] : t0_chain[W*i +: W];
-    assign t1_chain[W*(i+1) +: W] = far_earlier ? tdist[W*(2*i+1) +: W] : t1_chain[W*i +: W];
+    logic               valid_q;
+    logic [TagWidth-1:0] tag_q;
+    logic [W-1:0]        t0_q, t1_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) valid_q <= 1'b0;
+      else if (en) valid_q <= chain_valid[i];
+    end
+    always_ff @(posedge clk_i) begin
+      if (en) begin
+        tag_q <= chain_tag[TagWidth*i +: TagWidth];
+        t0_q <= near_later ? axis_dist[0 +: W] : t0_chain[W*i +: W];
+        t1_q <= far_earlier ? axis_dist[W +: W] : t1_chain[W*i +: W];
+      end
+    end
+    assign chain_valid[i+1] = valid_q;
+    assign chain_tag[TagWidth*(i+1) +: TagWidth] = tag_q;
+    assign t0_chain[W*(i+1) +: W] = t0_q;
+    assign t1_chain[W*(i+1) +: W] = t1_q;
   end
+  assign out_valid_o = chain_valid[3];
+  assign out_tag_o = chain_tag[3*TagWidth +: TagWidth];
+
   logic [W-1:0] t0_up_unused, t1_down_unused;
   fp_nudge #(.E(E), .M(M), .K(SlackUlps)) u_nudge_t0 (
     .a_i(t0_chain[3*W +: W]), .up_o(t0_up_unused), .down_o(out_t0_o)

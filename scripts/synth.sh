@@ -60,7 +60,7 @@ latency() {  # documented latency of <unit> for mantissa bits <m>
     fp_to_f32) echo 0 ;;
     fp_nudge) echo 0 ;;
     rt_trav_unit) echo 8 ;;
-    rt_clip_unit) echo 8 ;;
+    rt_clip_unit) echo 11 ;;
     rt_ray_setup) echo $(($2 + 6)) ;;
     rt_isect_unit) echo $(($2 + 34)) ;;
   esac
