@@ -8,7 +8,7 @@
 #   make bench      tracing and build speed against Embree
 BUILD ?= build
 JOBS ?= $(shell nproc)
-DEMO_SCENE ?= scenes/room.nff
+DEMO_SCENE ?= scenes/simple.nff
 # The RTL simulation of the demo (kdrt sim) runs at this resolution.
 DEMO_SIM_RES ?= 128x128
 KDRT := $(BUILD)/bin/kdrt
@@ -28,8 +28,7 @@ build: configure
 
 demo: build
 	@mkdir -p out
-	@scene="$(DEMO_SCENE)"; case "$$scene" in gen:*) ;; *) test -f "$$scene" || scene=gen:room:2000;; esac; \
-	set -e; set -x; \
+	@scene="$(DEMO_SCENE)"; set -e; set -x; \
 	$(KDRT) render "$$scene" -o out/demo.png --hits out/demo-hits.exr --json out/demo.json; \
 	$(KDRT) render "$$scene" --res $(DEMO_SIM_RES) -q -o out/demo-small.png --hits out/demo-small-hits.exr; \
 	$(KDRT) sim "$$scene" --res $(DEMO_SIM_RES) -o out/demo-sim.png --hits out/demo-sim-hits.exr \
