@@ -8,35 +8,6 @@
 #include "trace/rays_file.h"
 
 namespace kdrt::sim {
-namespace {
-
-void ParseResolution(const std::string& res, int* w, int* h) {
-  char x = 0;
-  std::istringstream in(res);
-  if (!(in >> *w >> x >> *h) || x != 'x' || *w < 1 || *h < 1 || *w > 65536 || *h > 65536 || !in.eof()) {
-    throw InputError("--res '" + res + "': expected WxH with 1 <= W, H <= 65536, e.g. 512x512");
-  }
-}
-
-Camera ParseCamera(const std::string& text, const Camera& base) {
-  std::istringstream in(text);
-  float f[10];
-  for (float& v : f) {
-    if (!(in >> v) || !std::isfinite(v)) {
-      throw InputError("--camera '" + text + "': expected 10 finite numbers: from(3) at(3) up(3) angle");
-    }
-  }
-  Camera c = base;
-  c.from = {f[0], f[1], f[2]};
-  c.at = {f[3], f[4], f[5]};
-  c.up = {f[6], f[7], f[8]};
-  c.angle_deg = f[9];
-  if (!(c.angle_deg > 0 && c.angle_deg < 180)) throw InputError("--camera: angle must lie in (0, 180) degrees");
-  return c;
-}
-
-}  // namespace
-
 void AddSimOptions(CLI::App& cmd, SimArgs& a) {
   cli::AddSceneOptions(cmd, a.scene);
   cmd.add_option("--res", a.res, "Image resolution WxH (default: the scene's, else 512x512)");
@@ -81,43 +52,6 @@ void CheckSimArgs(const SimArgs& a) {
   if (a.mem_latency < 1) throw InputError("--mem-latency must be at least 1 cycle");
   if (!(a.mem_bw > 0) || !std::isfinite(a.mem_bw)) throw InputError("--mem-bw must be a positive number");
   if (a.timeout < 1) throw InputError("--timeout must be at least 1 cycle");
-}
-
-std::vector<Ray> MakeRays(const SimArgs& args, const Scene& scene, int* width, int* height) {
-  std::vector<Ray> rays;
-  if (!args.rays.empty()) {
-    rays = ReadRaysFile(args.rays);
-    *width = static_cast<int>(rays.size());
-    *height = 1;
-    return rays;
-  }
-  Camera cam = scene.camera ? *scene.camera : AutoCamera(scene, 512, 512);
-  if (!args.camera.empty()) cam = ParseCamera(args.camera, cam);
-  if (!args.res.empty()) ParseResolution(args.res, &cam.width, &cam.height);
-  *width = cam.width;
-  *height = cam.height;
-  rays.reserve(static_cast<size_t>(cam.width) * cam.height);
-  for (int y = 0; y < cam.height; ++y) {
-    for (int x = 0; x < cam.width; ++x) {
-      const CameraRay cr = PrimaryRay(cam, x, y);
-      rays.push_back(Ray{cr.o, cr.d, cr.tmin, INFINITY});
-    }
-  }
-  return rays;
-}
-
-std::string DefaultImageName(const SimArgs& args) {
-  if (!args.rays.empty()) return "";
-  const std::string& scene = args.scene.scene;
-  if (scene.rfind("gen:", 0) == 0) {
-    std::string s = scene.substr(4);
-    for (char& c : s) c = c == ':' ? '_' : c;
-    return s + ".png";
-  }
-  const size_t slash = scene.find_last_of('/');
-  std::string base = scene.substr(slash == std::string::npos ? 0 : slash + 1);
-  const size_t dot = base.find_last_of('.');
-  return base.substr(0, dot) + ".png";
 }
 
 }  // namespace kdrt::sim

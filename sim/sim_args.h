@@ -43,12 +43,6 @@ void AddSimOptions(CLI::App& cmd, SimArgs& args);
 // Throws InputError on inconsistent options (e.g. --trace-ray without --trace).
 void CheckSimArgs(const SimArgs& args);
 
-// The rays of `kdrt render` for the same options: the ray file, or one
-// camera ray per pixel, row 0 first. Sets width and height (a ray file is
-// one row).
-std::vector<Ray> MakeRays(const SimArgs& args, const Scene& scene, int* width, int* height);
 
-// The image name `kdrt render` picks when -o is not given ("" for a ray file).
-std::string DefaultImageName(const SimArgs& args);
 
 }  // namespace kdrt::sim

@@ -74,8 +74,9 @@ int Run(const SimArgs& args) {
   const uint64_t mem_size = args.overrides.mem_size ? args.overrides.mem_size : uint64_t{1} << config.addr_width;
   CheckConfigCovers(config, req, mem_size, args.overrides.allow_overflow);
 
-  int width = 0, height = 0;
-  const std::vector<Ray> rays = MakeRays(args, p.scene, &width, &height);
+  const cli::RaySet ray_set = cli::MakeRays(p.scene, args.rays, args.camera, args.res);
+  const std::vector<Ray>& rays = ray_set.rays;
+  const int width = ray_set.width, height = ray_set.height;
   if (args.trace_ray >= static_cast<int64_t>(rays.size())) {
     throw InputError("--trace-ray " + std::to_string(args.trace_ray) + ": there are only " +
                      std::to_string(rays.size()) + " rays");
@@ -152,22 +153,9 @@ int Run(const SimArgs& args) {
   const nlohmann::json report = ReportJson(ri);
 
   const std::vector<Hit>& hits = run.result.hits;
-  std::string out = args.out;
-  if (out.empty()) out = DefaultImageName(args);
-  if (!out.empty()) {
-    const std::vector<float> rgb = ShadeEyeLight(p.scene, rays, hits);
-    outputs.Add(out, [&](const std::string& tmp) { WriteRgbImage(tmp, width, height, rgb); });
-  }
-  if (!args.hits.empty()) {
-    outputs.Add(args.hits, [&](const std::string& tmp) { WriteHitBuffer(tmp, width, height, hits); });
-  }
-  if (!args.json.empty()) {
-    outputs.Add(args.json, [&](const std::string& tmp) {
-      std::ofstream f(tmp);
-      f << report.dump(2) << "\n";
-      if (!f) throw InputError(args.json, 0, "cannot write JSON stats");
-    });
-  }
+  const std::string out =
+      args.out.empty() ? cli::DefaultImageName(args.scene.scene, !args.rays.empty()) : args.out;
+  cli::AddTraceOutputs(outputs, p.scene, ray_set, hits, out, args.hits, args.json, report);
   outputs.Commit();
 
   if (!args.quiet) {

@@ -31,66 +31,13 @@ struct RenderArgs {
   bool quiet = false;
 };
 
-void ParseResolution(const std::string& res, int* w, int* h) {
-  char x = 0;
-  std::istringstream in(res);
-  if (!(in >> *w >> x >> *h) || x != 'x' || *w < 1 || *h < 1 || *w > 65536 || *h > 65536 || !in.eof()) {
-    throw InputError("--res '" + res + "': expected WxH with 1 <= W, H <= 65536, e.g. 512x512");
-  }
-}
-
-Camera ParseCamera(const std::string& text, const Camera& base) {
-  std::istringstream in(text);
-  float f[10];
-  for (float& v : f) {
-    if (!(in >> v) || !std::isfinite(v)) {
-      throw InputError("--camera '" + text + "': expected 10 finite numbers: from(3) at(3) up(3) angle");
-    }
-  }
-  Camera c = base;
-  c.from = {f[0], f[1], f[2]};
-  c.at = {f[3], f[4], f[5]};
-  c.up = {f[6], f[7], f[8]};
-  c.angle_deg = f[9];
-  if (!(c.angle_deg > 0 && c.angle_deg < 180)) throw InputError("--camera: angle must lie in (0, 180) degrees");
-  return c;
-}
-
-std::string DefaultImageName(const std::string& scene) {
-  if (scene.rfind("gen:", 0) == 0) {
-    std::string s = scene.substr(4);
-    for (char& c : s) c = c == ':' ? '_' : c;
-    return s + ".png";
-  }
-  const size_t slash = scene.find_last_of('/');
-  std::string base = scene.substr(slash == std::string::npos ? 0 : slash + 1);
-  const size_t dot = base.find_last_of('.');
-  return base.substr(0, dot) + ".png";
-}
-
 int Run(const RenderArgs& args) {
   PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);
 
-  std::vector<Ray> rays;
-  int width = 0, height = 1;
-  if (!args.rays.empty()) {
-    rays = ReadRaysFile(args.rays);
-    width = static_cast<int>(rays.size());
-  } else {
-    Camera cam = p.scene.camera ? *p.scene.camera : AutoCamera(p.scene, 512, 512);
-    if (!args.camera.empty()) cam = ParseCamera(args.camera, cam);
-    if (!args.res.empty()) ParseResolution(args.res, &cam.width, &cam.height);
-    width = cam.width;
-    height = cam.height;
-    rays.reserve(static_cast<size_t>(width) * height);
-    for (int y = 0; y < height; ++y) {
-      for (int x = 0; x < width; ++x) {
-        const CameraRay cr = PrimaryRay(cam, x, y);
-        rays.push_back(Ray{cr.o, cr.d, cr.tmin, INFINITY});
-      }
-    }
-  }
+  const RaySet ray_set = MakeRays(p.scene, args.rays, args.camera, args.res);
+  const std::vector<Ray>& rays = ray_set.rays;
+  const int width = ray_set.width, height = ray_set.height;
 
   TraceOptions to;
   to.format = fp::ParseFormat(args.format);
@@ -123,22 +70,8 @@ int Run(const RenderArgs& args) {
   };
 
   OutputSet outputs;
-  std::string out = args.out;
-  if (out.empty() && args.rays.empty()) out = DefaultImageName(args.scene.scene);
-  if (!out.empty()) {
-    const std::vector<float> rgb = ShadeEyeLight(p.scene, rays, hits);
-    outputs.Add(out, [&](const std::string& tmp) { WriteRgbImage(tmp, width, height, rgb); });
-  }
-  if (!args.hits.empty()) {
-    outputs.Add(args.hits, [&](const std::string& tmp) { WriteHitBuffer(tmp, width, height, hits); });
-  }
-  if (!args.json.empty()) {
-    outputs.Add(args.json, [&](const std::string& tmp) {
-      std::ofstream f(tmp);
-      f << j.dump(2) << "\n";
-      if (!f) throw InputError(args.json, 0, "cannot write JSON stats");
-    });
-  }
+  const std::string out = args.out.empty() ? DefaultImageName(args.scene.scene, !args.rays.empty()) : args.out;
+  AddTraceOutputs(outputs, p.scene, ray_set, hits, out, args.hits, args.json, j);
   outputs.Commit();
 
   if (!args.quiet) {

@@ -7,6 +7,8 @@
 // KDRT_LONG=1 renders every scene and preset at 512x512 instead of 24x24.
 #include <gtest/gtest.h>
 
+#include "tests/common/run_kdrt.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -28,21 +30,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code;
-  std::string output;  // stdout and stderr
-};
-
-RunResult RunKdrt(const std::string& args) {
-  const std::string cmd = std::string(KDRT_BIN) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using testing::RunKdrt;
+using testing::RunResult;
 
 std::string ReadBytes(const std::string& path) {
   std::ifstream f(path, std::ios::binary);

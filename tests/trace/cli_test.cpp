@@ -2,6 +2,8 @@
 // error (file, line, what), a non-zero exit and no partial output file.
 #include <gtest/gtest.h>
 
+#include "tests/common/run_kdrt.h"
+
 #include <sys/wait.h>
 
 #include <array>
@@ -20,21 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code;
-  std::string output;  // stdout and stderr
-};
-
-RunResult RunKdrt(const std::string& args) {
-  const std::string cmd = std::string(KDRT_BIN) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using testing::RunKdrt;
+using testing::RunResult;
 
 class Cli : public ::testing::Test {
  protected:
@@ -79,7 +68,9 @@ TEST_F(Cli, RenderWritesImageHitsAndJson) {
   size_t hit_count = 0;
   for (const Hit& hit : hits) {
     hit_count += hit.IsHit();
-    if (!hit.IsHit()) EXPECT_TRUE(std::isinf(hit.t));
+    if (!hit.IsHit()) {
+      EXPECT_TRUE(std::isinf(hit.t));
+    }
   }
   EXPECT_GT(hit_count, hits.size() / 2);  // the camera looks into a closed room
   std::ifstream json(Path("a.json"));
