@@ -107,9 +107,10 @@ class TreeWriter {
 };
 
 // Box of the triangle clipped to `cell` (Sutherland-Hodgman in double,
-// rounded outward to float and clamped to the cell). Returns false when the
-// triangle does not touch the cell. Conservative: every point of the
-// triangle inside the closed cell lies inside the returned box.
+// rounded outward to float, clamped to the triangle's box and to the cell).
+// Returns false when the triangle does not touch the cell. Conservative:
+// every point of the triangle inside the closed cell lies inside the
+// returned box.
 bool ClippedTriangleBox(const Triangle& t, const Box& cell, Box* out);
 
 // The builders. Each appends exactly one subtree (the whole tree) to writer.

@@ -2,6 +2,7 @@
 // a node is the box of the triangle clipped to the node cell, not the
 // triangle's whole box, so a long triangle stops counting in cells it only
 // passes by in its bounding box.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -91,8 +92,12 @@ bool ClippedTriangleBox(const Triangle& t, const Box& cell, Box* out) {
       lo = std::min(lo, cur->p[i][axis]);
       hi = std::max(hi, cur->p[i][axis]);
     }
-    const float flo = RoundDown(lo - tol[axis]);
-    const float fhi = RoundUp(hi + tol[axis]);
+    // Widening must not carry the box past the triangle's own box: a triangle
+    // touching a split plane from one side would then count on both sides.
+    const float tri_lo = std::min({t.v0[axis], t.v1[axis], t.v2[axis]});
+    const float tri_hi = std::max({t.v0[axis], t.v1[axis], t.v2[axis]});
+    const float flo = std::max(RoundDown(lo - tol[axis]), tri_lo);
+    const float fhi = std::min(RoundUp(hi + tol[axis]), tri_hi);
     out->lo[axis] = std::min(std::max(flo, cell.lo[axis]), cell.hi[axis]);
     out->hi[axis] = std::max(std::min(fhi, cell.hi[axis]), cell.lo[axis]);
   }

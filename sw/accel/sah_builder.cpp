@@ -5,15 +5,15 @@
 // plus a small sorted list for the triangles that straddle the plane, merged
 // in linear time.
 //
-// Unlike the paper, classification is conservative with respect to the float
-// split position: a triangle whose box touches the plane from one side is in
-// both children (only triangles lying exactly in the plane are given to one
-// side by the planar rule). The sweep counts accordingly:
-//   N_below(s) = #{box.lo <= s} (+ planar at s if they go below)
-//   N_above(s) = #{box.hi >= s} (+ planar at s if they go above)
-// A plane exactly at a box bound therefore duplicates the touching
-// triangles; the clean split the paper makes there is found instead at the
-// next float beside the bound (see FindSplit).
+// Classification is the paper's (and pbrt's): a triangle is in the below
+// child iff its box in the node extends strictly below the plane (lo < s),
+// in the above child iff it extends strictly above (hi > s); one lying in
+// the plane (lo == hi == s) goes to the side the planar rule picks. A
+// triangle touching the plane from one side is therefore only on that side;
+// the traversal's slack (trace/traversal.h) makes a ray crossing the plane
+// near such a point visit both children. The sweep counts the same way:
+//   N_below(s) = #{lo < s} (+ planar at s if they go below)
+//   N_above(s) = #{hi > s} (+ planar at s if they go above)
 #include <algorithm>
 #include <cstring>
 #include <vector>
@@ -41,14 +41,14 @@ inline float FromOrderedBits(uint32_t o) {
   return f;
 }
 
-// OrderedBits never yields this (-0 is mapped to +0).
-constexpr uint32_t kNegativeZeroBits = 0x7fffffffu;
-
 inline uint64_t MakeEvent(float pos, uint32_t tri, EventType type) {
   return (static_cast<uint64_t>(OrderedBits(pos)) << 32) | (tri << 2) | type;
 }
 inline uint32_t EventPos(uint64_t e) { return static_cast<uint32_t>(e >> 32); }
 inline uint32_t EventTri(uint64_t e) { return static_cast<uint32_t>(e) >> 2; }
+// OrderedBits never yields this (-0 is mapped to +0).
+constexpr uint32_t kNegativeZeroBits = 0x7fffffffu;
+
 inline EventType EventKind(uint64_t e) { return static_cast<EventType>(e & 3u); }
 
 // LSD radix sort of the root event lists, 16 bits per pass (a few times
@@ -129,11 +129,16 @@ class SahBuilder {
   bool IsFlat(uint32_t tri, int axis) const { return (in_.flat[tri] >> axis) & 1u; }
 
   // A triangle lying in a plane x_axis = c gets one planar event at c (its
-  // exact vertex coordinate); otherwise start and end at its box bounds.
+  // exact vertex coordinate, which a clipped box would have widened);
+  // otherwise start and end at its box bounds. A clipped box that is flat
+  // (the triangle only touches a face of the cell) is planar too, so that
+  // start == end can never be classified as both below-only and above-only.
   void AppendEvents(uint32_t tri, const Box& box, int axis, std::vector<uint64_t>* out) const {
     if (IsFlat(tri, axis)) {
       const glm::vec3& v = tris_[tri].v0;
       out->push_back(MakeEvent(v[axis], tri, kPlanar));
+    } else if (box.lo[axis] == box.hi[axis]) {
+      out->push_back(MakeEvent(box.lo[axis], tri, kPlanar));
     } else {
       out->push_back(MakeEvent(box.lo[axis], tri, kStart));
       out->push_back(MakeEvent(box.hi[axis], tri, kEnd));
@@ -159,8 +164,9 @@ class SahBuilder {
     const size_t child_start[3] = {arena_[0].size(), arena_[1].size(), arena_[2].size()};
     NodeEvents below, above;
     if (split.n_below == 0 || split.n_above == 0) {
-      // Cutting off empty space: nothing touches the plane, so the full
-      // child keeps the node's event lists as they are.
+      // Cutting off empty space: every triangle lies on the full side (at
+      // most touching the plane), its box there is its box in the node, so
+      // the full child keeps the node's event lists as they are.
       EmptySplit(node, split, &below, &above);
     } else {
       SplitEvents(node, split, &below, &above);
@@ -181,14 +187,17 @@ class SahBuilder {
     writer_->AddLeaf(leaf_ids_);
   }
 
-  // Candidate planes per axis. In each gap between consecutive event
-  // positions nothing touches the plane and the counts are constant, so the
-  // cost is linear in the position: its best point is the gap end towards
-  // the side with more triangles (the float just above the lower or just
-  // below the upper event). An event position itself, where touching
-  // triangles count on both sides and the planar rule applies, is never
-  // better than the gap beside it and is only tried where a gap is missing
-  // (adjacent floats, or the cell boundary).
+  // Candidate planes per axis: the event positions strictly inside the cell,
+  // with the triangles lying in the plane (if any) once below and once above.
+  // Between two event positions the counts are constant and the cost is
+  // linear, so its minimum over the gap is at one of its ends; the event
+  // position at that end has the same count on one side and no more on the
+  // other (triangles ending or starting there drop out), and differs only by
+  // the one float of area, so inner gaps need no candidates of their own.
+  // The exception is flat geometry lying on a face of the cell (a floor):
+  // the plane that separates it from the empty space beside it can only be
+  // the float next to the face, so the first and the last gap are evaluated
+  // when planar triangles lie on the face.
   Split FindSplit(const NodeEvents& node) const {
     Split best;
     const Box& cell = node.cell;
@@ -224,26 +233,21 @@ class SahBuilder {
           best.n_above = n_above;
         }
       };
-      // The floats strictly between a and b (ordered bits); false if none.
-      auto gap = [](uint32_t a, uint32_t b, uint32_t* s1, uint32_t* s2) {
-        *s1 = a + 1;
-        *s2 = b - 1;
-        if (*s1 == kNegativeZeroBits) ++*s1;  // -0 is not a separate plane
-        if (*s2 == kNegativeZeroBits) --*s2;
-        return a < *s1 && *s1 <= *s2 && *s2 < b;
-      };
-      // Preferring the upper end on a tie in counts would let an empty
-      // sliver one float wide be cut off again and again where double
-      // precision cannot see the width; the rule above never does that.
-      auto consider_gap = [&](uint32_t a, uint32_t b, uint32_t n_below, uint32_t n_above) {
-        uint32_t s1, s2;
-        if (gap(a, b, &s1, &s2)) consider(n_below < n_above ? s2 : s1, n_below, n_above, true);
-      };
       const uint64_t* ev = arena_[axis].data();
       uint32_t starts_before = 0;  // starts and planars strictly below the plane
       uint32_t ends_before = 0;    // ends and planars strictly below the plane
       const uint32_t lo_bits = OrderedBits(cell.lo[axis]);
       const uint32_t hi_bits = OrderedBits(cell.hi[axis]);
+      // Both ends of the gap between positions a and b (ordered bits), with
+      // the gap's counts.
+      auto consider_gap = [&](uint32_t a, uint32_t b, uint32_t n_below, uint32_t n_above) {
+        uint32_t s1 = a + 1, s2 = b - 1;
+        if (s1 == kNegativeZeroBits) ++s1;  // -0 is not a separate plane
+        if (s2 == kNegativeZeroBits) --s2;
+        if (!(a < s1 && s1 <= s2 && s2 < b)) return;
+        consider(s1, n_below, n_above, true);
+        if (s2 != s1) consider(s2, n_below, n_above, true);
+      };
       uint32_t prev = lo_bits;
       size_t i = node.begin[axis];
       const size_t end = node.end[axis];
@@ -252,21 +256,21 @@ class SahBuilder {
         uint32_t kinds[4] = {0, 0, 0, 0};  // indexed by EventType, branch-free
         for (; i < end && EventPos(ev[i]) == pos; ++i) ++kinds[EventKind(ev[i])];
         const uint32_t n_end = kinds[kEnd], n_planar = kinds[kPlanar], n_start = kinds[kStart];
-        consider_gap(prev, pos, starts_before, n - ends_before);
         if (pos > lo_bits && pos < hi_bits) {
-          const uint32_t next = i < end ? EventPos(ev[i]) : hi_bits;
-          uint32_t s1, s2;
-          if (!gap(prev, pos, &s1, &s2) || !gap(pos, next, &s1, &s2)) {
-            // Planar triangles in the plane below, then above.
-            consider(pos, starts_before + n_start + n_planar, n - ends_before - n_planar, true);
-            if (n_planar > 0) consider(pos, starts_before + n_start, n - ends_before, false);
-          }
+          const uint32_t below = starts_before;
+          const uint32_t above = n - ends_before - n_end - n_planar;
+          consider(pos, below + n_planar, above, true);
+          if (n_planar > 0) consider(pos, below, above + n_planar, false);
+        } else if (pos == hi_bits && n_planar > 0) {
+          consider_gap(prev, pos, starts_before, n - ends_before);
         }
         starts_before += n_start + n_planar;
         ends_before += n_end + n_planar;
+        if (pos == lo_bits && n_planar > 0) {
+          consider_gap(pos, i < end ? EventPos(ev[i]) : hi_bits, starts_before, n - ends_before);
+        }
         prev = pos;
       }
-      consider_gap(prev, hi_bits, starts_before, n - ends_before);
     }
     return best;
   }
@@ -300,10 +304,10 @@ class SahBuilder {
       const uint32_t tri = EventTri(e);
       switch (EventKind(e)) {
         case kEnd:
-          if (pos < s) side_[tri] = kBelowOnly;
+          if (pos <= s) side_[tri] = kBelowOnly;
           break;
         case kStart:
-          if (pos > s) side_[tri] = kAboveOnly;
+          if (pos >= s) side_[tri] = kAboveOnly;
           break;
         case kPlanar:
           if (pos < s || (pos == s && split.planar_below)) {

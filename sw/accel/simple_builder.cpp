@@ -1,8 +1,9 @@
 // Median and midpoint kd-trees: the cheap reference splitters. Both split the
 // longest axis of the node cell; the median splitter at the median of the
 // triangles' box centres (boxes clamped to the cell), the midpoint splitter in
-// the middle of the cell. Triangles touching the plane, including those lying
-// in it, go to both children.
+// the middle of the cell. Classification as in the SAH builder: below iff the
+// (clamped) box extends strictly below the plane, above iff strictly above; a
+// triangle lying in the plane goes below.
 #include <algorithm>
 #include <vector>
 
@@ -24,6 +25,11 @@ class SimpleBuilder {
  private:
   static bool StrictlyInside(float s, const Box& cell, int axis) {
     return s > cell.lo[axis] && s < cell.hi[axis];
+  }
+
+  // Extends strictly below s, or lies in the plane s.
+  static bool GoesBelow(const Box& b, int axis, float s) {
+    return b.lo[axis] < s || (b.lo[axis] == s && b.hi[axis] == s);
   }
 
   static float Midpoint(const Box& cell, int axis) {
@@ -61,12 +67,12 @@ class SimpleBuilder {
     const size_t below_begin = ids_.size();
     for (size_t i = begin; i < end; ++i) {
       const uint32_t id = ids_[i];
-      if (std::max(in_.boxes[id].lo[axis], cell.lo[axis]) <= s) ids_.push_back(id);
+      if (GoesBelow(ClampToCell(in_.boxes[id], cell), axis, s)) ids_.push_back(id);
     }
     const size_t above_begin = ids_.size();
     for (size_t i = begin; i < end; ++i) {
       const uint32_t id = ids_[i];
-      if (std::min(in_.boxes[id].hi[axis], cell.hi[axis]) >= s) ids_.push_back(id);
+      if (ClampToCell(in_.boxes[id], cell).hi[axis] > s) ids_.push_back(id);
     }
     const size_t above_end = ids_.size();
     if (above_begin - below_begin == n && above_end - above_begin == n) {

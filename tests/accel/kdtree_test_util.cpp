@@ -138,6 +138,7 @@ class StructureChecker {
       if (k > 0 && tree_.lists[first + k - 1] >= id) {
         Fail() << "leaf " << i << " ids not strictly ascending";
       }
+      CheckReachesIntoCell(i, id, cell);
     }
     // Median and midpoint stop early only at max depth or when a split would
     // not separate anything; for midpoint that is checkable here.
@@ -153,12 +154,32 @@ class StructureChecker {
           const Triangle& t = scene_.triangles[tree_.lists[first + k]];
           const float lo = std::min({t.v0[axis], t.v1[axis], t.v2[axis]});
           const float hi = std::max({t.v0[axis], t.v1[axis], t.v2[axis]});
-          if (lo > s || hi < s) {
+          if (lo >= s || hi <= s) {
             Fail() << "midpoint leaf " << i << " with " << count
                    << " triangles could have been split at " << s;
             break;
           }
         }
+      }
+    }
+  }
+
+  // The classification rule seen from a leaf: on every axis the triangle's
+  // box extends strictly into the cell, or the triangle lies in a plane
+  // within the closed cell. A triangle that only touches a face of the cell
+  // from outside does not belong to it.
+  void CheckReachesIntoCell(uint32_t leaf, uint32_t id, const Cell& cell) {
+    const Triangle& t = scene_.triangles[id];
+    for (int a = 0; a < 3; ++a) {
+      const double lo = std::min({t.v0[a], t.v1[a], t.v2[a]});
+      const double hi = std::max({t.v0[a], t.v1[a], t.v2[a]});
+      const bool reaches = lo == hi ? (lo >= cell.lo[a] && lo <= cell.hi[a])
+                                    : (lo < cell.hi[a] && hi > cell.lo[a]);
+      if (!reaches) {
+        Fail() << "leaf " << leaf << " lists triangle " << id << " [" << lo << ", " << hi
+               << "] that does not reach into its cell [" << cell.lo[a] << ", " << cell.hi[a]
+               << "] on axis " << a;
+        return;
       }
     }
   }
@@ -220,10 +241,11 @@ class StructureChecker {
 };
 
 // Descends with the coverage rule: strictly below/above the split follows
-// one child, on the split follows both. Both must list the triangle, except
-// that the SAH planar rule may give a triangle lying in the plane to one side.
-bool Reaches(const KdTree& tree, uint32_t i, const double p[3], uint32_t tri, const Triangle& t,
-             bool planar_rule) {
+// one child, on the split follows both, and at least one leaf reached must
+// list the triangle (a triangle touching the plane from one side, or lying
+// in it, is only in one child). A point strictly inside a cell reaches one
+// leaf, which must list it.
+bool Reaches(const KdTree& tree, uint32_t i, const double p[3], uint32_t tri) {
   const img::Node& node = tree.nodes[i];
   if (node.IsLeaf()) {
     const auto first = tree.lists.begin() + node.FirstEntry();
@@ -231,12 +253,9 @@ bool Reaches(const KdTree& tree, uint32_t i, const double p[3], uint32_t tri, co
   }
   const int axis = node.Axis();
   const float s = node.Split();
-  if (p[axis] < s) return Reaches(tree, i + 1, p, tri, t, planar_rule);
-  if (p[axis] > s) return Reaches(tree, node.AboveChild(), p, tri, t, planar_rule);
-  const bool below = Reaches(tree, i + 1, p, tri, t, planar_rule);
-  const bool above = Reaches(tree, node.AboveChild(), p, tri, t, planar_rule);
-  const bool in_plane = t.v0[axis] == s && t.v1[axis] == s && t.v2[axis] == s;
-  return (planar_rule && in_plane) ? (below || above) : (below && above);
+  if (p[axis] < s) return Reaches(tree, i + 1, p, tri);
+  if (p[axis] > s) return Reaches(tree, node.AboveChild(), p, tri);
+  return Reaches(tree, i + 1, p, tri) || Reaches(tree, node.AboveChild(), p, tri);
 }
 
 }  // namespace
@@ -400,7 +419,6 @@ int CheckCoverage(const Scene& scene, const BuildOptions& options, const KdTree&
                   uint32_t seed, int random_points_per_triangle) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const bool planar_rule = options.method == SplitMethod::kSah;
   int checked = 0, failures = 0;
   for (uint32_t id = 0; id < scene.triangles.size(); ++id) {
     const Triangle& t = scene.triangles[id];
@@ -428,7 +446,7 @@ int CheckCoverage(const Scene& scene, const BuildOptions& options, const KdTree&
         p[a] = std::min(hi, std::max(lo, x));
       }
       ++checked;
-      if (!Reaches(tree, 0, p, id, t, planar_rule)) {
+      if (!Reaches(tree, 0, p, id)) {
         if (++failures <= 5) {
           ADD_FAILURE() << scene.source << " method " << SplitMethodName(options.method)
                         << (options.perfect_splits ? "+perfect" : "") << ": triangle " << id

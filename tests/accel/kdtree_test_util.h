@@ -35,13 +35,16 @@ Scene ClusteredScene(uint32_t seed, int clusters, int per_cluster, float box);
 // A UV sphere of radius 1 with about `count` triangles.
 Scene SphereScene(int count);
 
-// Checks layout, index ranges, sorted leaf lists, depth limit, bounds and
-// stats (against an independent recount). Reports failures via gtest.
+// Checks layout, index ranges, sorted leaf lists, that every listed triangle
+// reaches into its leaf's cell (strictly, unless it lies in a plane), depth
+// limit, bounds and stats (against an independent recount). Reports
+// failures via gtest.
 void CheckTreeStructure(const Scene& scene, const BuildOptions& options, const KdTree& tree);
 
 // Checks that every sample point of every non-degenerate triangle, descended
-// with the float splits, reaches only leaves listing the triangle (see the
-// coverage rule in docs/kdtree.md). Returns the number of points checked.
+// with the float splits (on a split plane into both children), reaches at
+// least one leaf listing the triangle (see the coverage rule in
+// docs/kdtree.md). Returns the number of points checked.
 int CheckCoverage(const Scene& scene, const BuildOptions& options, const KdTree& tree,
                   uint32_t seed, int random_points_per_triangle);
 
