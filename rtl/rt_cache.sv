@@ -1,14 +1,22 @@
-// rt_cache: direct-mapped, read-only, blocking cache of whole lines.
+// rt_cache: direct-mapped, read-only, non-blocking cache of whole lines.
 //
 // A request names a line by `key_i` (any number that identifies the line: a
 // line address, or a triangle id) and gives the byte address of the line's
-// first 16-byte beat. A hit answers the next cycle, one request per cycle; a
-// miss fetches LineBeats consecutive beats from memory (any order, any
-// latency), fills the line and answers; the cache takes no request while it
-// misses. Responses come back in request order with the request's tag.
+// first 16-byte beat. A hit answers the next cycle, one request per cycle,
+// also while misses are being served (hit under miss). A miss takes one of
+// Mshrs miss registers, which fetches LineBeats consecutive beats from memory
+// (any order, any latency) into its own line buffer; when all beats are in,
+// the line is written into the cache and answered. Several misses are thus in
+// flight at once, and responses come back OUT OF ORDER, each with its
+// request's tag.
 //
-// Memory requests carry the beat number in mem_req_beat_o; the surrounding
-// arbiter routes responses back with it.
+// The request stalls (req_ready_o low) while the response register is full,
+// while a completed miss is being answered, when it misses on a line that a
+// miss register is already fetching (it then hits after the fill: no merging,
+// never stale data), or when it misses and no miss register is free.
+//
+// Memory requests carry {miss register, beat} in mem_req_id_o; the
+// surrounding arbiter routes responses back with it (mem_resp_id_i).
 `default_nettype none
 
 module rt_cache #(
@@ -17,9 +25,12 @@ module rt_cache #(
   parameter int unsigned KeyWidth = 24,
   parameter int unsigned AddrWidth = 32,
   parameter int unsigned TagWidth = 8,
+  parameter int unsigned Mshrs = 4,
   localparam int unsigned LineBits = LineBeats * 128,
   localparam int unsigned IdxW = (Lines > 1) ? $clog2(Lines) : 1,
-  localparam int unsigned BeatW = 2
+  localparam int unsigned BeatW = 2,
+  localparam int unsigned MshrW = (Mshrs > 1) ? $clog2(Mshrs) : 1,
+  localparam int unsigned MemIdW = MshrW + BeatW
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -34,55 +45,105 @@ module rt_cache #(
   input  logic                 resp_ready_i,
   output logic [LineBits-1:0]  resp_data_o,
   output logic [TagWidth-1:0]  resp_tag_o,
-  // memory side
+  // memory side: id = {miss register, beat}
   output logic                 mem_req_valid_o,
   input  logic                 mem_req_ready_i,
   output logic [AddrWidth-1:0] mem_req_addr_o,
-  output logic [BeatW-1:0]     mem_req_beat_o,
+  output logic [MemIdW-1:0]    mem_req_id_o,
   input  logic                 mem_resp_valid_i,
-  input  logic [BeatW-1:0]     mem_resp_beat_i,
+  input  logic [MemIdW-1:0]    mem_resp_id_i,
   input  logic [127:0]         mem_resp_data_i,
   // performance events
   output logic                 hit_o,
   output logic                 miss_o,
-  output logic                 filling_o   // a miss is being served
+  output logic                 filling_o   // some miss is being served
 );
+
+  localparam int unsigned CntW = BeatW + 1;
 
   logic [LineBits-1:0] data_q [Lines];
   logic [KeyWidth-1:0] key_q [Lines];
   logic [Lines-1:0]    valid_q;
 
-  logic                 filling_q;
-  logic [KeyWidth-1:0]  fill_key_q;
-  logic [AddrWidth-1:0] fill_addr_q;
-  logic [TagWidth-1:0]  fill_tag_q;
-  logic [BeatW:0]       sent_q;      // beats requested so far
-  logic [LineBeats-1:0] got_q;       // beats received
-  logic [LineBits-1:0]  fill_data_q;
+  // Miss registers (MSHRs), flat vectors indexed by the register number.
+  logic [Mshrs-1:0]           mshr_valid_q;
+  logic [Mshrs*KeyWidth-1:0]  mshr_key_q;
+  logic [Mshrs*AddrWidth-1:0] mshr_addr_q;
+  logic [Mshrs*TagWidth-1:0]  mshr_tag_q;
+  logic [Mshrs*CntW-1:0]      mshr_sent_q;   // beats requested so far
+  logic [Mshrs*LineBeats-1:0] mshr_got_q;    // beats received
+  logic [Mshrs*LineBits-1:0]  mshr_data_q;
 
   logic                resp_valid_q;
   logic [LineBits-1:0] resp_data_q;
   logic [TagWidth-1:0] resp_tag_q;
 
-  logic [IdxW-1:0] req_idx, fill_idx;
-  logic            lookup_hit, accept, out_free, fill_done;
+  // Per-register conditions and the lowest-numbered register of each kind.
+  logic [Mshrs-1:0] key_match, done, sending;
+  logic             free_valid, done_valid, send_valid;
+  logic [MshrW-1:0] free_idx, done_idx, send_idx;
+  for (genvar m = 0; m < Mshrs; m++) begin : g_mshr
+    assign key_match[m] = mshr_valid_q[m] && mshr_key_q[KeyWidth*m +: KeyWidth] == req_key_i;
+    assign done[m] = mshr_valid_q[m] && (&mshr_got_q[LineBeats*m +: LineBeats]);
+    assign sending[m] = mshr_valid_q[m] && mshr_sent_q[CntW*m +: CntW] < CntW'(LineBeats);
+  end
+  always_comb begin
+    free_valid = 1'b0;
+    free_idx = '0;
+    done_valid = 1'b0;
+    done_idx = '0;
+    send_valid = 1'b0;
+    send_idx = '0;
+    for (int m = Mshrs - 1; m >= 0; m--) begin
+      if (!mshr_valid_q[m]) begin
+        free_valid = 1'b1;
+        free_idx = MshrW'(m);
+      end
+      if (done[m]) begin
+        done_valid = 1'b1;
+        done_idx = MshrW'(m);
+      end
+      if (sending[m]) begin
+        send_valid = 1'b1;
+        send_idx = MshrW'(m);
+      end
+    end
+  end
+
+  logic [IdxW-1:0]     req_idx, done_line;
+  logic [KeyWidth-1:0] done_key;
+  logic [LineBits-1:0] done_data;
+  logic [TagWidth-1:0] done_tag;
+  logic                lookup_hit, accept, out_free, deliver;
 
   // Lines is a power of two: the index is the key's low bits.
   assign req_idx = req_key_i[IdxW-1:0];
-  assign fill_idx = fill_key_q[IdxW-1:0];
+  assign done_key = mshr_key_q[KeyWidth*done_idx +: KeyWidth];
+  assign done_line = done_key[IdxW-1:0];
+  assign done_data = mshr_data_q[LineBits*done_idx +: LineBits];
+  assign done_tag = mshr_tag_q[TagWidth*done_idx +: TagWidth];
+
   assign lookup_hit = valid_q[req_idx] && key_q[req_idx] == req_key_i;
   assign out_free = !resp_valid_q || resp_ready_i;
-  assign req_ready_o = !filling_q && out_free;
+  // Completed misses go first: they free their register.
+  assign deliver = done_valid && out_free;
+  assign req_ready_o = out_free && !done_valid && (lookup_hit || (free_valid && !(|key_match)));
   assign accept = req_valid_i && req_ready_o;
-  assign fill_done = filling_q && (&got_q) && out_free;
 
-  assign filling_o = filling_q;
+  assign filling_o = |mshr_valid_q;
   assign hit_o = accept && lookup_hit;
   assign miss_o = accept && !lookup_hit;
 
-  assign mem_req_valid_o = filling_q && (sent_q < (BeatW + 1)'(LineBeats));
-  assign mem_req_addr_o = fill_addr_q + AddrWidth'(sent_q) * AddrWidth'(16);
-  assign mem_req_beat_o = sent_q[BeatW-1:0];
+  logic [CntW-1:0] send_beat;
+  assign send_beat = mshr_sent_q[CntW*send_idx +: CntW];
+  assign mem_req_valid_o = send_valid;
+  assign mem_req_addr_o = mshr_addr_q[AddrWidth*send_idx +: AddrWidth] +
+                          AddrWidth'(send_beat) * AddrWidth'(16);
+  assign mem_req_id_o = {send_idx, send_beat[BeatW-1:0]};
+
+  logic [MshrW-1:0] resp_mshr;
+  logic [BeatW-1:0] resp_beat;
+  assign {resp_mshr, resp_beat} = mem_resp_id_i;
 
   assign resp_valid_o = resp_valid_q;
   assign resp_data_o = resp_data_q;
@@ -91,26 +152,31 @@ module rt_cache #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       valid_q <= '0;
-      filling_q <= 1'b0;
+      mshr_valid_q <= '0;
+      mshr_sent_q <= '0;
+      mshr_got_q <= '0;
       resp_valid_q <= 1'b0;
-      sent_q <= '0;
-      got_q <= '0;
     end else begin
       if (resp_valid_q && resp_ready_i) resp_valid_q <= 1'b0;
       if (accept) begin
         if (lookup_hit) begin
           resp_valid_q <= 1'b1;
         end else begin
-          filling_q <= 1'b1;
-          sent_q <= '0;
-          got_q <= '0;
+          mshr_valid_q[free_idx] <= 1'b1;
+          mshr_sent_q[CntW*free_idx +: CntW] <= '0;
+          mshr_got_q[LineBeats*free_idx +: LineBeats] <= '0;
         end
       end
-      if (mem_req_valid_o && mem_req_ready_i) sent_q <= sent_q + 1'b1;
-      if (filling_q && mem_resp_valid_i) got_q <= got_q | LineBeats'(1 << mem_resp_beat_i);
-      if (fill_done) begin
-        filling_q <= 1'b0;
-        valid_q[fill_idx] <= 1'b1;
+      if (mem_req_valid_o && mem_req_ready_i) begin
+        mshr_sent_q[CntW*send_idx +: CntW] <= send_beat + 1'b1;
+      end
+      if (mem_resp_valid_i) begin
+        mshr_got_q[LineBeats*resp_mshr +: LineBeats] <=
+            mshr_got_q[LineBeats*resp_mshr +: LineBeats] | LineBeats'(1 << resp_beat);
+      end
+      if (deliver) begin
+        mshr_valid_q[done_idx] <= 1'b0;
+        valid_q[done_line] <= 1'b1;
         resp_valid_q <= 1'b1;
       end
     end
@@ -122,19 +188,19 @@ module rt_cache #(
         resp_data_q <= data_q[req_idx];
         resp_tag_q <= req_tag_i;
       end else begin
-        fill_key_q <= req_key_i;
-        fill_addr_q <= req_addr_i;
-        fill_tag_q <= req_tag_i;
+        mshr_key_q[KeyWidth*free_idx +: KeyWidth] <= req_key_i;
+        mshr_addr_q[AddrWidth*free_idx +: AddrWidth] <= req_addr_i;
+        mshr_tag_q[TagWidth*free_idx +: TagWidth] <= req_tag_i;
       end
     end
-    if (filling_q && mem_resp_valid_i) begin
-      fill_data_q[128*mem_resp_beat_i +: 128] <= mem_resp_data_i;
+    if (mem_resp_valid_i) begin
+      mshr_data_q[LineBits*resp_mshr + 128*resp_beat +: 128] <= mem_resp_data_i;
     end
-    if (fill_done) begin
-      data_q[fill_idx] <= fill_data_q;
-      key_q[fill_idx] <= fill_key_q;
-      resp_data_q <= fill_data_q;
-      resp_tag_q <= fill_tag_q;
+    if (deliver) begin
+      data_q[done_line] <= done_data;
+      key_q[done_line] <= done_key;
+      resp_data_q <= done_data;
+      resp_tag_q <= done_tag;
     end
   end
 

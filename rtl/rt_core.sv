@@ -34,6 +34,8 @@ module rt_core #(
   parameter int unsigned NodeLineBeats = 2,
   parameter int unsigned ListLineBeats = 2,
   parameter int unsigned RayIdWidth = 32,
+  // Miss registers per cache (outstanding line fetches); at most 16.
+  parameter int unsigned CacheMshrs = 8,
   localparam int unsigned W = E + M + 1,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1
 ) (
@@ -516,13 +518,15 @@ module rt_core #(
   logic                 node_mem_valid, list_mem_valid, tri_mem_valid;
   logic [2:0]           mem_ready, mem_resp_valid;
   logic [AddrWidth-1:0] node_mem_addr, list_mem_addr, tri_mem_addr;
-  logic [1:0]           node_mem_beat, list_mem_beat, tri_mem_beat, mem_resp_beat;
+  // A cache's memory id: {miss register, beat}.
+  localparam int unsigned MemIdW = ((CacheMshrs > 1) ? $clog2(CacheMshrs) : 1) + 2;
+  logic [MemIdW-1:0]    node_mem_id, list_mem_id, tri_mem_id, mem_resp_id;
   logic [127:0]         mem_resp_data;
   logic                 node_hit, node_miss, list_hit, list_miss, tri_hit, tri_miss;
   logic                 node_filling, list_filling, tri_filling;
 
   rt_cache #(.Lines(NodeCacheLines), .LineBeats(NodeLineBeats), .KeyWidth(NodeKeyW),
-             .AddrWidth(AddrWidth), .TagWidth(ThW)) u_node_cache (
+             .AddrWidth(AddrWidth), .TagWidth(ThW), .Mshrs(CacheMshrs)) u_node_cache (
     .clk_i, .rst_ni,
     .req_valid_i    (fetch_valid),
     .req_ready_o    (node_req_ready),
@@ -536,9 +540,9 @@ module rt_core #(
     .mem_req_valid_o(node_mem_valid),
     .mem_req_ready_i(mem_ready[0]),
     .mem_req_addr_o (node_mem_addr),
-    .mem_req_beat_o (node_mem_beat),
+    .mem_req_id_o   (node_mem_id),
     .mem_resp_valid_i(mem_resp_valid[0]),
-    .mem_resp_beat_i(mem_resp_beat),
+    .mem_resp_id_i  (mem_resp_id),
     .mem_resp_data_i(mem_resp_data),
     .hit_o          (node_hit),
     .miss_o         (node_miss),
@@ -546,7 +550,7 @@ module rt_core #(
   );
 
   rt_cache #(.Lines(ListCacheLines), .LineBeats(ListLineBeats), .KeyWidth(ListKeyW),
-             .AddrWidth(AddrWidth), .TagWidth(ThW + ListOffW)) u_list_cache (
+             .AddrWidth(AddrWidth), .TagWidth(ThW + ListOffW), .Mshrs(CacheMshrs)) u_list_cache (
     .clk_i, .rst_ni,
     .req_valid_i    (walk_active_q),
     .req_ready_o    (list_req_ready),
@@ -560,9 +564,9 @@ module rt_core #(
     .mem_req_valid_o(list_mem_valid),
     .mem_req_ready_i(mem_ready[1]),
     .mem_req_addr_o (list_mem_addr),
-    .mem_req_beat_o (list_mem_beat),
+    .mem_req_id_o   (list_mem_id),
     .mem_resp_valid_i(mem_resp_valid[1]),
-    .mem_resp_beat_i(mem_resp_beat),
+    .mem_resp_id_i  (mem_resp_id),
     .mem_resp_data_i(mem_resp_data),
     .hit_o          (list_hit),
     .miss_o         (list_miss),
@@ -573,7 +577,7 @@ module rt_core #(
   logic [TriIdxWidth-1:0] entry_tri;
   assign entry_tri = TriIdxWidth'(entry_id);
   rt_cache #(.Lines(TriCacheLines), .LineBeats(3), .KeyWidth(TriIdxWidth),
-             .AddrWidth(AddrWidth), .TagWidth(ThW + TriIdxWidth)) u_tri_cache (
+             .AddrWidth(AddrWidth), .TagWidth(ThW + TriIdxWidth), .Mshrs(CacheMshrs)) u_tri_cache (
     .clk_i, .rst_ni,
     .req_valid_i    (list_resp_valid),
     .req_ready_o    (tri_req_ready),
@@ -587,23 +591,23 @@ module rt_core #(
     .mem_req_valid_o(tri_mem_valid),
     .mem_req_ready_i(mem_ready[2]),
     .mem_req_addr_o (tri_mem_addr),
-    .mem_req_beat_o (tri_mem_beat),
+    .mem_req_id_o   (tri_mem_id),
     .mem_resp_valid_i(mem_resp_valid[2]),
-    .mem_resp_beat_i(mem_resp_beat),
+    .mem_resp_id_i  (mem_resp_id),
     .mem_resp_data_i(mem_resp_data),
     .hit_o          (tri_hit),
     .miss_o         (tri_miss),
     .filling_o      (tri_filling)
   );
 
-  rt_mem_arb #(.N(3), .AddrWidth(AddrWidth)) u_mem_arb (
+  rt_mem_arb #(.N(3), .AddrWidth(AddrWidth), .IdW(MemIdW)) u_mem_arb (
     .clk_i, .rst_ni,
     .req_valid_i    ({tri_mem_valid, list_mem_valid, node_mem_valid}),
     .req_ready_o    (mem_ready),
     .req_addr_i     ({tri_mem_addr, list_mem_addr, node_mem_addr}),
-    .req_beat_i     ({tri_mem_beat, list_mem_beat, node_mem_beat}),
+    .req_id_i       ({tri_mem_id, list_mem_id, node_mem_id}),
     .resp_valid_o   (mem_resp_valid),
-    .resp_beat_o    (mem_resp_beat),
+    .resp_id_o      (mem_resp_id),
     .resp_data_o    (mem_resp_data),
     .mem_req_valid_o,
     .mem_req_ready_i,

@@ -1,13 +1,16 @@
 // rt_mem_arb: shares the core's one memory port among its caches.
 //
-// Round-robin over the requesting caches; a request's tag is the cache's
-// number (bits [3:2]) and the beat within its line (bits [1:0]), and the
-// response is routed back by it. Responses are never refused.
+// Round-robin over the requesting caches. A request's tag is the cache's
+// number (2 bits) above the cache's own id of the request (IdW bits: its miss
+// register and the beat within the line, see rt_cache), zero-extended to 8
+// bits; the response is routed back by it, so responses may come back in any
+// order. Responses are never refused. Needs N <= 4 and IdW <= 6.
 `default_nettype none
 
 module rt_mem_arb #(
   parameter int unsigned N = 3,
-  parameter int unsigned AddrWidth = 32
+  parameter int unsigned AddrWidth = 32,
+  parameter int unsigned IdW = 4
 ) (
   input  logic                   clk_i,
   input  logic                   rst_ni,
@@ -15,9 +18,9 @@ module rt_mem_arb #(
   input  logic [N-1:0]           req_valid_i,
   output logic [N-1:0]           req_ready_o,
   input  logic [N*AddrWidth-1:0] req_addr_i,
-  input  logic [N*2-1:0]         req_beat_i,
+  input  logic [N*IdW-1:0]       req_id_i,
   output logic [N-1:0]           resp_valid_o,
-  output logic [1:0]             resp_beat_o,
+  output logic [IdW-1:0]         resp_id_o,
   output logic [127:0]           resp_data_o,
   // memory side
   output logic                   mem_req_valid_o,
@@ -29,10 +32,10 @@ module rt_mem_arb #(
   input  logic [127:0]           mem_resp_data_i
 );
 
-  localparam int unsigned IdxW = (N > 1) ? $clog2(N) : 1;
+  localparam int unsigned GntW = (N > 1) ? $clog2(N) : 1;
 
   logic            gnt_valid;
-  logic [IdxW-1:0] gnt;
+  logic [GntW-1:0] gnt;
 
   rt_rr_arb #(.N(N)) u_arb (
     .clk_i,
@@ -45,18 +48,20 @@ module rt_mem_arb #(
 
   assign mem_req_valid_o = gnt_valid;
   assign mem_req_addr_o = req_addr_i[AddrWidth*gnt +: AddrWidth];
-  assign mem_req_tag_o = {4'd0, 2'(gnt), req_beat_i[2*gnt +: 2]};
+  assign mem_req_tag_o = 8'({2'(gnt), req_id_i[IdW*gnt +: IdW]});
 
+  logic [1:0] resp_cache;
+  assign resp_cache = mem_resp_tag_i[IdW +: 2];
   always_comb begin
     req_ready_o = '0;
     resp_valid_o = '0;
     if (gnt_valid) req_ready_o[gnt] = mem_req_ready_i;
-    if (mem_resp_valid_i && 32'(mem_resp_tag_i[3:2]) < N) resp_valid_o[mem_resp_tag_i[3:2]] = 1'b1;
+    if (mem_resp_valid_i && 32'(resp_cache) < N) resp_valid_o[resp_cache] = 1'b1;
   end
-  assign resp_beat_o = mem_resp_tag_i[1:0];
+  assign resp_id_o = mem_resp_tag_i[IdW-1:0];
   /* verilator lint_off UNUSEDSIGNAL */
   logic unused_tag;
-  assign unused_tag = ^mem_resp_tag_i[7:4];
+  assign unused_tag = ^mem_resp_tag_i;
   /* verilator lint_on UNUSEDSIGNAL */
   assign resp_data_o = mem_resp_data_i;
 

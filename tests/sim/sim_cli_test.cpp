@@ -214,7 +214,16 @@ TEST_F(SimCli, StackSmallerThanTheTreeIsRefused) {
 }
 
 TEST_F(SimCli, SceneLargerThanTheMemoryIsRefused) {
-  const RunResult s = RunKdrt("sim gen:balls:500 --res 8x8 --mem-size 65536 -o " + Path("x.png"));
+  // A memory one cache line smaller than the scene's image.
+  const RunResult info = RunKdrt("info gen:balls:500 --json " + Path("info.json"));
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  const std::string json = ReadBytes(Path("info.json"));
+  const size_t at = json.find("\"image_bytes\": ");
+  ASSERT_NE(at, std::string::npos) << json;
+  const uint64_t image_bytes = std::stoull(json.substr(at + 15));
+  fs::remove(Path("info.json"));
+  const RunResult s = RunKdrt("sim gen:balls:500 --res 8x8 --mem-size " + std::to_string(image_bytes - 64) +
+                              " -o " + Path("x.png"));
   EXPECT_NE(s.exit_code, 0);
   EXPECT_NE(s.output.find("memory image needs"), std::string::npos) << s.output;
   const RunResult a = RunKdrt("sim gen:balls:500 --res 8x8 --addr-width 12 -o " + Path("x.png"));
