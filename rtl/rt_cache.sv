@@ -80,8 +80,8 @@ module rt_cache #(
 
   // Per-register conditions and the lowest-numbered register of each kind.
   logic [Mshrs-1:0] key_match, done, sending;
-  logic             free_valid, done_valid, send_valid;
-  logic [MshrW-1:0] free_idx, done_idx, send_idx;
+  logic             free_valid, done_valid, send_valid, pick_valid;
+  logic [MshrW-1:0] free_idx, done_idx, send_idx, pick_idx;
   for (genvar m = 0; m < Mshrs; m++) begin : g_mshr
     assign key_match[m] = mshr_valid_q[m] && mshr_key_q[KeyWidth*m +: KeyWidth] == req_key_i;
     assign done[m] = mshr_valid_q[m] && (&mshr_got_q[LineBeats*m +: LineBeats]);
@@ -92,8 +92,8 @@ module rt_cache #(
     free_idx = '0;
     done_valid = 1'b0;
     done_idx = '0;
-    send_valid = 1'b0;
-    send_idx = '0;
+    pick_valid = 1'b0;
+    pick_idx = '0;
     for (int m = Mshrs - 1; m >= 0; m--) begin
       if (!mshr_valid_q[m]) begin
         free_valid = 1'b1;
@@ -104,8 +104,8 @@ module rt_cache #(
         done_idx = MshrW'(m);
       end
       if (sending[m]) begin
-        send_valid = 1'b1;
-        send_idx = MshrW'(m);
+        pick_valid = 1'b1;
+        pick_idx = MshrW'(m);
       end
     end
   end
@@ -133,6 +133,26 @@ module rt_cache #(
   assign filling_o = |mshr_valid_q;
   assign hit_o = accept && lookup_hit;
   assign miss_o = accept && !lookup_hit;
+
+  // A beat offered to memory and not taken stays offered (the valid/ready
+  // rule), even if a lower-numbered miss register starts sending meanwhile.
+  logic             send_held_q;
+  logic [MshrW-1:0] send_held_idx_q;
+  assign send_idx = send_held_q ? send_held_idx_q : pick_idx;
+  assign send_valid = send_held_q || pick_valid;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      send_held_q <= 1'b0;
+      send_held_idx_q <= '0;
+    end else begin
+      send_held_q <= send_valid && !mem_req_ready_i;
+      send_held_idx_q <= send_idx;
+    end
+  end
+  rt_stream_check #(.Width(AddrWidth + MshrW + BeatW), .Name("rt_cache memory request")) u_mem_check (
+    .clk_i, .rst_ni, .valid_i(mem_req_valid_o), .ready_i(mem_req_ready_i),
+    .payload_i({mem_req_addr_o, mem_req_id_o})
+  );
 
   logic [CntW-1:0] send_beat;
   assign send_beat = mshr_sent_q[CntW*send_idx +: CntW];

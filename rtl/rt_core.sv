@@ -625,6 +625,19 @@ module rt_core #(
   assign unused_bits = ^{fetch_addr, node_addr, trav_t0, trav_ts, entry_off, entry_id, tri_line, isect_id};
   /* verilator lint_on UNUSEDSIGNAL */
 
+  // ------------------------------------------------------------ stream rules
+  rt_stream_check #(.Width(RayIdWidth + 256), .Name("rt_core ray in")) u_ray_check (
+    .clk_i, .rst_ni, .valid_i(ray_valid_i), .ready_i(ray_ready_o), .payload_i({ray_id_i, ray_i})
+  );
+  rt_stream_check #(.Width(RayIdWidth + 1 + 4 * 32 + 1), .Name("rt_core hit out")) u_hit_check (
+    .clk_i, .rst_ni, .valid_i(hit_valid_o), .ready_i(hit_ready_i),
+    .payload_i({hit_ray_id_o, hit_o, hit_prim_o, hit_t_o, hit_u_o, hit_v_o, hit_overflow_o})
+  );
+  rt_stream_check #(.Width(AddrWidth + 8), .Name("rt_core memory request")) u_mem_check (
+    .clk_i, .rst_ni, .valid_i(mem_req_valid_o), .ready_i(mem_req_ready_i),
+    .payload_i({mem_req_addr_o, mem_req_tag_o})
+  );
+
   // ------------------------------------------------------------ performance events
   logic any_progress, waiting_mem;
   assign any_progress = trav_fire || list_req_fire || list_resp_fire || tri_resp_fire || exit_fire ||

@@ -400,42 +400,17 @@ module rt_isect_unit #(
 
   /* verilator lint_on PINCONNECTEMPTY */
 
-`ifndef SYNTHESIS
-  // The valid/ready rule on both streams: once valid is high it stays high,
-  // with the same payload, until ready. The input side checks the caller;
-  // the output side checks this unit.
-  localparam int unsigned InBits = TagWidth + 32 + 3 * W + 6 + 5 * W + 288;
-  localparam int unsigned OutBits = TagWidth + 32 + 1 + 3 * W;
-  logic [InBits-1:0]  in_payload, in_payload_q;
-  logic [OutBits-1:0] out_payload, out_payload_q;
-  logic               in_wait_q, out_wait_q;
-  assign in_payload = {in_tag_i, in_id_i, in_o_i, in_kx_i, in_ky_i, in_kz_i, in_sx_i, in_sy_i,
-                       in_sz_i, in_tmin_i, in_tmax_i, in_tri_i};
-  assign out_payload = {out_tag_o, out_id_o, out_hit_o, out_t_o, out_u_o, out_v_o};
-  always_ff @(posedge clk_i) begin
-    in_payload_q <= in_payload;
-    out_payload_q <= out_payload;
-  end
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      in_wait_q <= 1'b0;
-      out_wait_q <= 1'b0;
-    end else begin
-      if (in_wait_q) begin
-        assert (in_valid_i) else $error("rt_isect_unit: in_valid_i fell before in_ready_o");
-        assert (in_payload == in_payload_q)
-          else $error("rt_isect_unit: input changed before in_ready_o");
-      end
-      if (out_wait_q) begin
-        assert (out_valid_o) else $error("rt_isect_unit: out_valid_o fell before out_ready_i");
-        assert (out_payload == out_payload_q)
-          else $error("rt_isect_unit: output changed before out_ready_i");
-      end
-      in_wait_q <= in_valid_i && !in_ready_o;
-      out_wait_q <= out_valid_o && !out_ready_i;
-    end
-  end
-`endif
+  // The valid/ready rule on both streams: the input side checks the caller,
+  // the output side this unit.
+  rt_stream_check #(.Width(TagWidth + 32 + 3 * W + 6 + 5 * W + 288), .Name("rt_isect_unit in")) u_in_check (
+    .clk_i, .rst_ni, .valid_i(in_valid_i), .ready_i(in_ready_o),
+    .payload_i({in_tag_i, in_id_i, in_o_i, in_kx_i, in_ky_i, in_kz_i, in_sx_i, in_sy_i, in_sz_i, in_tmin_i,
+                in_tmax_i, in_tri_i})
+  );
+  rt_stream_check #(.Width(TagWidth + 32 + 1 + 3 * W), .Name("rt_isect_unit out")) u_out_check (
+    .clk_i, .rst_ni, .valid_i(out_valid_o), .ready_i(out_ready_i),
+    .payload_i({out_tag_o, out_id_o, out_hit_o, out_t_o, out_u_o, out_v_o})
+  );
 
 endmodule
 

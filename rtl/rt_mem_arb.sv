@@ -37,14 +37,35 @@ module rt_mem_arb #(
   logic            gnt_valid;
   logic [GntW-1:0] gnt;
 
+  // A request offered and not taken stays granted until it is taken, so the
+  // memory port keeps valid and payload stable (the valid/ready rule).
+  logic            held_q;
+  logic [GntW-1:0] held_gnt_q, sel;
+  logic            sel_valid, rr_valid;
+  logic [GntW-1:0] rr_gnt;
+
   rt_rr_arb #(.N(N)) u_arb (
     .clk_i,
     .rst_ni,
     .req_i  (req_valid_i),
-    .ack_i  (mem_req_ready_i),
-    .valid_o(gnt_valid),
-    .idx_o  (gnt)
+    .ack_i  (mem_req_ready_i && !held_q),
+    .valid_o(rr_valid),
+    .idx_o  (rr_gnt)
   );
+  assign sel = held_q ? held_gnt_q : rr_gnt;
+  assign sel_valid = held_q ? req_valid_i[held_gnt_q] : rr_valid;
+  assign gnt = sel;
+  assign gnt_valid = sel_valid;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      held_q <= 1'b0;
+      held_gnt_q <= '0;
+    end else begin
+      held_q <= sel_valid && !mem_req_ready_i;
+      held_gnt_q <= sel;
+    end
+  end
 
   assign mem_req_valid_o = gnt_valid;
   assign mem_req_addr_o = req_addr_i[AddrWidth*gnt +: AddrWidth];

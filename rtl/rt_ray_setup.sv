@@ -193,40 +193,15 @@ module rt_ray_setup #(
 
   /* verilator lint_on PINCONNECTEMPTY */
 
-`ifndef SYNTHESIS
-  // The valid/ready rule on both streams (see rt_isect_unit).
-  localparam int unsigned InBits = TagWidth + 256;
-  localparam int unsigned OutBits = TagWidth + 14 * W + 6;
-  logic [InBits-1:0]  in_payload, in_payload_q;
-  logic [OutBits-1:0] out_payload, out_payload_q;
-  logic               in_wait_q, out_wait_q;
-  assign in_payload = {in_tag_i, raw};
-  assign out_payload = {out_tag_o, out_o_o, out_d_o, out_inv_o, out_tmin_o, out_tmax_o, out_kx_o,
-                        out_ky_o, out_kz_o, out_sx_o, out_sy_o, out_sz_o};
-  always_ff @(posedge clk_i) begin
-    in_payload_q <= in_payload;
-    out_payload_q <= out_payload;
-  end
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      in_wait_q <= 1'b0;
-      out_wait_q <= 1'b0;
-    end else begin
-      if (in_wait_q) begin
-        assert (in_valid_i) else $error("rt_ray_setup: in_valid_i fell before in_ready_o");
-        assert (in_payload == in_payload_q)
-          else $error("rt_ray_setup: input changed before in_ready_o");
-      end
-      if (out_wait_q) begin
-        assert (out_valid_o) else $error("rt_ray_setup: out_valid_o fell before out_ready_i");
-        assert (out_payload == out_payload_q)
-          else $error("rt_ray_setup: output changed before out_ready_i");
-      end
-      in_wait_q <= in_valid_i && !in_ready_o;
-      out_wait_q <= out_valid_o && !out_ready_i;
-    end
-  end
-`endif
+  // The valid/ready rule on both streams.
+  rt_stream_check #(.Width(TagWidth + 256), .Name("rt_ray_setup in")) u_in_check (
+    .clk_i, .rst_ni, .valid_i(in_valid_i), .ready_i(in_ready_o), .payload_i({in_tag_i, raw})
+  );
+  rt_stream_check #(.Width(TagWidth + 14 * W + 6), .Name("rt_ray_setup out")) u_out_check (
+    .clk_i, .rst_ni, .valid_i(out_valid_o), .ready_i(out_ready_i),
+    .payload_i({out_tag_o, out_o_o, out_d_o, out_inv_o, out_tmin_o, out_tmax_o, out_kx_o, out_ky_o, out_kz_o,
+                out_sx_o, out_sy_o, out_sz_o})
+  );
 
 endmodule
 

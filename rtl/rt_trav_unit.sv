@@ -141,23 +141,15 @@ module rt_trav_unit #(
   assign out_second_o = bf3 ? above3 : below3;
   assign out_action_o = (t1_lt_ts || ts_le0) ? 2'd0 : (ts_lt_t0 ? 2'd1 : 2'd2);
 
-`ifndef SYNTHESIS
-  // picorv32's stream rule on the output: valid holds and the payload stays
-  // put until ready.
-  logic             stalled_q;
-  logic [W+1:0]     held_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) stalled_q <= 1'b0;
-    else stalled_q <= out_valid_o && !out_ready_i;
-  end
-  always_ff @(posedge clk_i) begin
-    held_q <= {out_action_o, out_ts_o};
-    if (stalled_q) begin
-      assert (out_valid_o && held_q == {out_action_o, out_ts_o})
-        else $error("rt_trav_unit: output changed while stalled");
-    end
-  end
-`endif
+  // picorv32's stream rule on both sides.
+  rt_stream_check #(.Width(SideW + 32), .Name("rt_trav_unit in")) u_in_check (
+    .clk_i, .rst_ni, .valid_i(in_valid_i), .ready_i(in_ready_o), .payload_i({side0, in_split_i})
+  );
+  rt_stream_check #(.Width(TagWidth + 2 + 2 * NodeIdxWidth + 5 * W), .Name("rt_trav_unit out")) u_out_check (
+    .clk_i, .rst_ni, .valid_i(out_valid_o), .ready_i(out_ready_i),
+    .payload_i({out_tag_o, out_action_o, out_first_o, out_second_o, out_ts_o, out_ts_lo_o, out_ts_hi_o, out_t0_o,
+                out_t1_o})
+  );
 
 endmodule
 
