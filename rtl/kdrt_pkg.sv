@@ -49,6 +49,36 @@ package kdrt_pkg;
   // The vertex words the intersection unit reads: bytes [0, 36) of a record.
   localparam int unsigned TriVertexBits = 288;
 
+  // The traversal step's decision (sw/trace/traversal.h TraversalAction).
+  typedef enum logic [1:0] {
+    TravFirst  = 2'd0,  // only the first child's interval is non-empty: descend
+    TravSecond = 2'd1,  // only the second's: descend
+    TravPush   = 2'd2   // both: descend into the first, push the second
+  } trav_action_e;
+
+  // rt_core's perf_o: one bit per event, set in each cycle in which the event
+  // happens; the simulator counts the cycles per bit. MSB first. The C++ side
+  // (<build>/generated/sim/perf_layout.h) is generated from this struct by
+  // cmake/perf_layout.cmake, so names and bit positions are defined here only.
+  typedef struct packed {
+    logic trav_leaf;           // a node response was a leaf
+    logic overflow;            // a push found the thread's stack full
+    logic ray_out;             // a hit record left the core
+    logic ray_in;              // a ray entered the core
+    logic stall_backpressure;  // a unit's output could not be taken
+    logic stall_stack;         // a thread waited for the exit port (stack pop)
+    logic stall_mem;           // busy, no unit progressed, memory outstanding
+    logic tri_miss;            // triangle cache miss
+    logic tri_hit;             // triangle cache hit
+    logic list_miss;           // list cache miss
+    logic list_hit;            // list cache hit
+    logic node_miss;           // node cache miss
+    logic node_hit;            // node cache hit
+    logic isect_busy;          // the intersection unit took a triangle
+    logic list_busy;           // the list unit issued or received an entry
+    logic trav_busy;           // the traversal unit took a node
+  } perf_t;
+
 endpackage
 
 `default_nettype wire

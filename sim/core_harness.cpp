@@ -10,32 +10,10 @@
 #include "Vrt_core.h"
 #include "fp/format.h"
 #include "sim/sim_ctrl.h"
+#include "trace/hit_compare.h"
 
 namespace kdrt::sim {
 namespace {
-
-std::string FloatHex(float f) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.9g (0x%08" PRIx32 ")", static_cast<double>(f), fp::BitsOf(f));
-  return buf;
-}
-
-std::string HitText(const Hit& h) {
-  std::ostringstream s;
-  s << (h.IsHit() ? "hit" : "miss") << ", prim ";
-  if (h.IsHit()) {
-    s << h.prim;
-  } else {
-    s << "none (0xffffffff)";
-  }
-  s << ", t " << FloatHex(h.t) << ", u " << FloatHex(h.u) << ", v " << FloatHex(h.v);
-  return s.str();
-}
-
-bool SameBits(const Hit& a, const Hit& b) {
-  return a.prim == b.prim && fp::BitsOf(a.t) == fp::BitsOf(b.t) && fp::BitsOf(a.u) == fp::BitsOf(b.u) &&
-         fp::BitsOf(a.v) == fp::BitsOf(b.v);
-}
 
 void SetWide(uint32_t* words, int count, const uint32_t* values) {
   for (int i = 0; i < count; ++i) words[i] = values[i];
@@ -175,10 +153,10 @@ void CoreHarness::CheckHit(uint64_t cycle, uint32_t id, const Hit& got, bool ove
   std::ostringstream s;
   s << "co-simulation mismatch at cycle " << cycle << " (the first; the run stops here)\n";
   s << "  ray " << id << "\n";
-  s << "    origin    " << FloatHex(r.o.x) << " " << FloatHex(r.o.y) << " " << FloatHex(r.o.z) << "\n";
-  s << "    direction " << FloatHex(r.d.x) << " " << FloatHex(r.d.y) << " " << FloatHex(r.d.z) << "\n";
-  s << "    tmin      " << FloatHex(r.tmin) << "\n";
-  s << "    tmax      " << FloatHex(r.tmax) << "\n";
+  s << "    origin    " << FloatText(r.o.x) << " " << FloatText(r.o.y) << " " << FloatText(r.o.z) << "\n";
+  s << "    direction " << FloatText(r.d.x) << " " << FloatText(r.d.y) << " " << FloatText(r.d.z) << "\n";
+  s << "    tmin      " << FloatText(r.tmin) << "\n";
+  s << "    tmax      " << FloatText(r.tmax) << "\n";
   s << "  model (" << options_.reference.format.Name() << "): " << HitText(want) << "\n";
   s << "  RTL:   " << HitText(got) << ", overflow 0\n";
   s << "  model node path (" << path.size() << " nodes, " << counters.leaves << " leaves, " << counters.tri_tests
@@ -201,42 +179,47 @@ void CoreHarness::Progress(uint64_t cycle, bool final_line) {
   std::fflush(stderr);
 }
 
+void CoreHarness::Start(SimCtrl<Vrt_core>& ctrl, const std::string& trace_path) {
+  Configure();
+  if (!trace_path.empty()) ctrl.OpenTrace(trace_path);
+  ctrl.EnableDump(dump_wanted_);
+  ctrl.Reset();
+  start_ = last_progress_ = std::chrono::steady_clock::now();
+}
+
+void CoreHarness::Cycle(SimCtrl<Vrt_core>& ctrl) {
+  const uint64_t cycle = ctrl.cycle();
+  BeginCycle(cycle);
+  ctrl.EnableDump(dump_wanted_);
+  ctrl.Settle();
+  const bool dump_this_cycle = dump_wanted_;
+  EndCycle(cycle);
+  // The cycle in which the traced ray leaves is still dumped.
+  ctrl.EnableDump(dump_this_cycle || dump_wanted_);
+  ctrl.Tick();
+}
+
+RunOutcome CoreHarness::Finish(SimCtrl<Vrt_core>& ctrl, const MemoryModel& memory) {
+  ctrl.CloseTrace();
+  RunOutcome out;
+  out.result = result_;
+  out.result.cycles = ctrl.cycle();
+  out.result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (options_.progress) Progress(out.result.cycles, true);
+  out.mem_bytes_read = memory.bytes_read();
+  out.mem_requests = memory.requests();
+  out.mem_max_outstanding = memory.max_outstanding();
+  return out;
+}
+
 RunOutcome RunVerilator(const RunSpec& spec) {
   MemoryModel memory(spec.memory);
   memory.LoadImage(std::vector<uint8_t>(spec.image->data(), spec.image->data() + spec.image->size()));
   SimCtrl<Vrt_core> ctrl;
   CoreHarness harness(ctrl.top(), *spec.image, *spec.rays, *spec.reference, memory, spec.options);
-  harness.Configure();
-  if (!spec.trace_path.empty()) ctrl.OpenTrace(spec.trace_path);
-  ctrl.EnableDump(harness.DumpWanted());
-  ctrl.Reset();
-  const auto start = std::chrono::steady_clock::now();
-  uint64_t cycle = 0;
-  while (!harness.Done()) {
-    cycle = ctrl.cycle();
-    harness.BeginCycle(cycle);
-    ctrl.EnableDump(harness.DumpWanted());
-    ctrl.Settle();
-    const bool dump_this_cycle = harness.DumpWanted();
-    harness.EndCycle(cycle);
-    // The cycle in which the traced ray leaves is still dumped.
-    ctrl.EnableDump(dump_this_cycle || harness.DumpWanted());
-    ctrl.Tick();
-  }
-  ctrl.CloseTrace();
-  RunOutcome out;
-  out.result = harness.result();
-  out.result.cycles = ctrl.cycle();
-  out.result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (spec.options.progress) {
-    std::fprintf(stderr, "\rsim: %zu/%zu rays, %" PRIu64 " cycles, %.0f kcycles/s\n", spec.rays->size(),
-                 spec.rays->size(), out.result.cycles,
-                 out.result.wall_seconds > 0 ? out.result.cycles / out.result.wall_seconds * 1e-3 : 0.0);
-  }
-  out.mem_bytes_read = memory.bytes_read();
-  out.mem_requests = memory.requests();
-  out.mem_max_outstanding = memory.max_outstanding();
-  return out;
+  harness.Start(ctrl, spec.trace_path);
+  while (!harness.Done()) harness.Cycle(ctrl);
+  return harness.Finish(ctrl, memory);
 }
 
 }  // namespace kdrt::sim

@@ -20,6 +20,7 @@
 
 #include "common/ray.h"
 #include "sim/memory_model.h"
+#include "sim/run_result.h"
 #include "trace/memory_image.h"
 #include "trace/tracer.h"
 
@@ -27,7 +28,8 @@ class Vrt_core;
 
 namespace kdrt::sim {
 
-inline constexpr int kPerfBits = 16;
+template <class Top>
+class SimCtrl;
 
 // The run cannot go on: a co-simulation mismatch, a timeout or a protocol
 // violation. The message is the whole report.
@@ -43,17 +45,6 @@ struct HarnessOptions {
   bool progress = false;
 };
 
-struct HarnessResult {
-  uint64_t cycles = 0;
-  std::array<uint64_t, kPerfBits> perf{};  // cycles in which each perf_o bit was set
-  std::vector<Hit> hits;                   // by ray id, as the RTL returned them
-  std::vector<uint8_t> overflow;           // by ray id: the record had hit_overflow_o
-  uint64_t overflows = 0;
-  uint64_t hit_count = 0;
-  uint64_t max_in_flight = 0;
-  double wall_seconds = 0;
-};
-
 class CoreHarness {
  public:
   // `reference` holds the model's hit for every ray (TraceRays with the same
@@ -61,23 +52,23 @@ class CoreHarness {
   CoreHarness(Vrt_core& top, const ImageView& image, const std::vector<Ray>& rays,
               const std::vector<Hit>& reference, MemoryPort& memory, const HarnessOptions& options);
 
-  // Static inputs (bases, bounds) and idle streams; call before reset.
-  void Configure();
+  // The start of every run, whatever loop drives the clock: static inputs
+  // (bases, bounds), idle streams, the waveform (if `trace_path` is set), reset.
+  void Start(SimCtrl<Vrt_core>& ctrl, const std::string& trace_path);
+  // One clock cycle: drive the inputs, evaluate with the clock low, sample the
+  // handshakes and check what left the core, rising edge. Throws SimFailure on
+  // a mismatch, a protocol violation or a timeout.
+  void Cycle(SimCtrl<Vrt_core>& ctrl);
+  bool Done() const { return received_ == rays_.size(); }
+  // After the last cycle: the counters, the cycles, the memory's figures.
+  RunOutcome Finish(SimCtrl<Vrt_core>& ctrl, const MemoryModel& memory);
 
+ private:
+  void Configure();
   // Drives ray, memory-response and hit-ready inputs for cycle `cycle`.
   void BeginCycle(uint64_t cycle);
   // After evaluating with the clock low: handshakes, perf events, checks.
-  // Throws SimFailure on a mismatch, a protocol violation or a timeout.
   void EndCycle(uint64_t cycle);
-
-  bool Done() const { return received_ == rays_.size(); }
-  // Whether the waveform should be dumped this cycle (see --trace-ray).
-  bool DumpWanted() const { return dump_wanted_; }
-
-  // Counters so far; `cycles` is set by the caller.
-  HarnessResult& result() { return result_; }
-
- private:
   void CheckHit(uint64_t cycle, uint32_t id, const Hit& got, bool overflow);
   void Progress(uint64_t cycle, bool final_line);
 
@@ -106,13 +97,6 @@ struct RunSpec {
   MemoryConfig memory;
   HarnessOptions options;
   std::string trace_path;  // FST waveform, or empty
-};
-
-struct RunOutcome {
-  HarnessResult result;
-  uint64_t mem_bytes_read = 0;
-  uint64_t mem_requests = 0;
-  uint64_t mem_max_outstanding = 0;
 };
 
 // The plain Verilator loop (sim/sim_ctrl.h) until every hit record is back.

@@ -50,10 +50,7 @@ class ScCore : public sc_core::sc_module {
   void start_of_simulation() override {
     harness_ = std::make_unique<CoreHarness>(ctrl_.top(), *spec_.image, *spec_.rays, *spec_.reference, *mem[0],
                                              spec_.options);
-    harness_->Configure();
-    if (!spec_.trace_path.empty()) ctrl_.OpenTrace(spec_.trace_path);
-    ctrl_.EnableDump(harness_->DumpWanted());
-    ctrl_.Reset();
+    harness_->Start(ctrl_, spec_.trace_path);
   }
 
   CoreHarness& harness() { return *harness_; }
@@ -67,14 +64,7 @@ class ScCore : public sc_core::sc_module {
       return;
     }
     try {
-      const uint64_t cycle = ctrl_.cycle();
-      harness_->BeginCycle(cycle);
-      ctrl_.EnableDump(harness_->DumpWanted());
-      ctrl_.Settle();
-      const bool dump_this_cycle = harness_->DumpWanted();
-      harness_->EndCycle(cycle);
-      ctrl_.EnableDump(dump_this_cycle || harness_->DumpWanted());
-      ctrl_.Tick();
+      harness_->Cycle(ctrl_);
     } catch (...) {
       // Exceptions must not cross the SystemC kernel: stop, rethrow later.
       failure_ = std::current_exception();
@@ -100,18 +90,9 @@ RunOutcome RunSystemC(const RunSpec& spec) {
   core.clk(clock);
   core.mem(memory);
 
-  const auto start = std::chrono::steady_clock::now();
   sc_core::sc_start();
   if (core.failure()) std::rethrow_exception(core.failure());
-  core.ctrl().CloseTrace();
-  RunOutcome out;
-  out.result = core.harness().result();
-  out.result.cycles = core.ctrl().cycle();
-  out.result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out.mem_bytes_read = memory.model().bytes_read();
-  out.mem_requests = memory.model().requests();
-  out.mem_max_outstanding = memory.model().max_outstanding();
-  return out;
+  return core.harness().Finish(core.ctrl(), memory.model());
 }
 
 }  // namespace kdrt::sim

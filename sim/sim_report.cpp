@@ -2,33 +2,23 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string_view>
 
 namespace kdrt::sim {
 namespace {
 
-enum PerfBit {
-  kTravBusy = 0,
-  kListBusy,
-  kIsectBusy,
-  kNodeHit,
-  kNodeMiss,
-  kListHit,
-  kListMiss,
-  kTriHit,
-  kTriMiss,
-  kStallMem,
-  kStallStack,
-  kStallBackpressure,
-  kRayIn,
-  kRayOut,
-  kOverflow,
-  kTravLeaf
-};
-
-const char* const kPerfNames[kPerfBits] = {"trav_busy",  "list_busy",  "isect_busy",  "node_hit",
-                                           "node_miss",  "list_hit",   "list_miss",   "tri_hit",
-                                           "tri_miss",   "stall_mem",  "stall_stack", "stall_backpressure",
-                                           "ray_in",     "ray_out",    "overflow",    "trav_leaf"};
+// The bit of perf_o named `name` (a compile-time error if there is none).
+constexpr int Bit(std::string_view name) {
+  for (int b = 0; b < kPerfBits; ++b) {
+    if (name == kPerfFields[b].name) return b;
+  }
+  throw "no such perf_t field in rtl/kdrt_pkg.sv";
+}
+constexpr int kTravBusy = Bit("trav_busy"), kListBusy = Bit("list_busy"), kIsectBusy = Bit("isect_busy");
+constexpr int kNodeHit = Bit("node_hit"), kNodeMiss = Bit("node_miss"), kListHit = Bit("list_hit");
+constexpr int kListMiss = Bit("list_miss"), kTriHit = Bit("tri_hit"), kTriMiss = Bit("tri_miss");
+constexpr int kStallMem = Bit("stall_mem"), kStallStack = Bit("stall_stack");
+constexpr int kStallBackpressure = Bit("stall_backpressure");
 
 double Ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
 
@@ -40,18 +30,13 @@ nlohmann::json ReportJson(const ReportInputs& in) {
   const double rays = static_cast<double>(in.rays);
   const auto& p = r.perf;
   nlohmann::json perf;
-  for (int b = 0; b < kPerfBits; ++b) perf[kPerfNames[b]] = p[b];
+  for (int b = 0; b < kPerfBits; ++b) perf[kPerfFields[b].name] = p[b];
   const double nodes = in.reference_totals.nodes, tests = in.reference_totals.tri_tests;
   const double bound_cycles = std::max(nodes, tests);
   return {
       {"command", "sim"},
-      {"scene", in.scene},
-      {"format", in.format},
+      {"format", in.config.Format().Name()},
       {"loop", in.loop},
-      {"width", in.width},
-      {"height", in.height},
-      {"triangles", in.triangles},
-      {"tree", {{"nodes", in.tree_nodes}, {"max_depth", in.tree_depth}}},
       {"model", in.config.Json()},
       {"requirements", in.requirements.Json()},
       {"memory",
@@ -93,6 +78,15 @@ nlohmann::json ReportJson(const ReportInputs& in) {
       {"sim_cycles_per_second", Ratio(cycles, r.wall_seconds)},
       {"sim_rays_per_second", Ratio(rays, r.wall_seconds)},
   };
+}
+
+void AddScene(const SceneFacts& f, nlohmann::json* report) {
+  nlohmann::json& j = *report;
+  j["scene"] = f.scene;
+  j["width"] = f.width;
+  j["height"] = f.height;
+  j["triangles"] = f.triangles;
+  j["tree"] = {{"nodes", f.tree_nodes}, {"max_depth", f.tree_depth}};
 }
 
 void PrintReport(const nlohmann::json& j, std::FILE* out) {

@@ -1,5 +1,7 @@
 // The numbers `kdrt sim` reports (docs/simulator.md defines each one), as a
-// table on stdout and as JSON.
+// table on stdout and as JSON. The model executable writes the JSON of its
+// run (ReportJson); the front end adds what it knows of the scene (AddScene)
+// and prints it (PrintReport).
 #pragma once
 
 #include <cstdint>
@@ -8,29 +10,34 @@
 #include <nlohmann/json.hpp>
 
 #include "common/ray.h"
-#include "sim/core_harness.h"
+#include "sim/core_params.h"
 #include "sim/memory_model.h"
-#include "sim/sim_config.h"
+#include "sim/run_result.h"
 
 namespace kdrt::sim {
 
 struct ReportInputs {
-  std::string scene;
-  std::string format;
   std::string loop;  // "verilator" or "systemc"
-  int width = 0, height = 0;
   CoreConfig config;
   SceneRequirements requirements;
   MemoryConfig memory;
   RayCounters reference_totals;  // TraceRays over every ray
   const RunOutcome* run = nullptr;
   uint64_t rays = 0;
-  uint64_t tree_nodes = 0;
-  uint32_t tree_depth = 0;
-  uint64_t triangles = 0;
 };
 
 nlohmann::json ReportJson(const ReportInputs& in);
+
+// What only the front end knows: the scene, its tree and the image size.
+struct SceneFacts {
+  std::string scene;
+  int width = 0, height = 0;
+  uint64_t triangles = 0;
+  uint64_t tree_nodes = 0;
+  uint32_t tree_depth = 0;
+};
+void AddScene(const SceneFacts& facts, nlohmann::json* report);
+
 // The same numbers as a table.
 void PrintReport(const nlohmann::json& report, std::FILE* out);
 

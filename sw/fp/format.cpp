@@ -15,14 +15,15 @@
 #include <cstdio>
 
 #include "common/error.h"
+#include "fp/presets.h"  // generated from cmake/presets.cmake
 
 namespace kdrt::fp {
 
 std::string Format::Name() const {
-  if (*this == kFp32) return "fp32";
-  if (*this == kFp24) return "fp24";
-  if (*this == kBf16) return "bf16";
-  if (*this == kFp16) return "fp16";
+#define KDRT_PRESET_NAME(name, pe, pm) \
+  if (e == pe && m == pm) return #name;
+  KDRT_PRESET_LIST(KDRT_PRESET_NAME)
+#undef KDRT_PRESET_NAME
   return "e" + std::to_string(e) + "m" + std::to_string(m);
 }
 
@@ -43,11 +44,20 @@ Format ParseFormat(const std::string& name) {
       consumed == static_cast<int>(name.size()) && name.find_first_of("+- ") == std::string::npos) {
     return MakeFormat(e, m);
   }
-  throw InputError("unknown number format '" + name +
-                   "': expected fp32, fp24, bf16, fp16 or eXmY (e.g. e4m3)");
+  throw InputError("unknown number format '" + name + "': expected " + PresetNames() + " or eXmY (e.g. e4m3)");
 }
 
-std::vector<Format> Presets() { return {kFp32, kFp24, kBf16, kFp16}; }
+std::string PresetNames() {
+  std::string names;
+  for (const Format& f : Presets()) names += (names.empty() ? "" : ", ") + f.Name();
+  return names;
+}
+
+std::vector<Format> Presets() {
+#define KDRT_PRESET_FORMAT(name, e, m) Format{e, m},
+  return {KDRT_PRESET_LIST(KDRT_PRESET_FORMAT)};
+#undef KDRT_PRESET_FORMAT
+}
 
 double ToDouble(Format f, uint32_t x) {
   x &= f.WidthMask();

@@ -55,6 +55,8 @@ struct Format {
   bool operator!=(const Format& o) const { return !(*this == o); }
 };
 
+// Named presets for code and tests; the preset list itself (Presets(), the
+// names Name() gives) is cmake/presets.cmake.
 inline constexpr Format kFp32{8, 23};
 inline constexpr Format kFp24{7, 16};
 inline constexpr Format kBf16{8, 7};
@@ -67,6 +69,8 @@ Format MakeFormat(int e, int m);
 // "fp32", "fp24", "bf16", "fp16" or "eXmY" (e.g. "e4m3"); throws InputError.
 Format ParseFormat(const std::string& name);
 std::vector<Format> Presets();
+// "fp32, fp24, bf16, fp16": the preset names, for help texts and messages.
+std::string PresetNames();
 
 // Classification (a subnormal encoding counts as a zero: DAZ).
 inline bool IsNaN(Format f, uint32_t x) {

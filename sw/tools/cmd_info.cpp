@@ -4,14 +4,17 @@
 
 #include "common/error.h"
 #include "tools/commands.h"
-#include "tools/scene_setup.h"
+#include "setup/prepared_scene.h"
+#include "setup/ray_set.h"
+#include "setup/trace_outputs.h"
+#include "tools/scene_options.h"
 #include "trace/output_file.h"
 
 namespace kdrt::cli {
 namespace {
 
 struct InfoArgs {
-  SceneArgs scene;
+  SceneSpec scene;
   std::string json;
   std::string image_out;
 };
@@ -23,14 +26,10 @@ int Run(const InfoArgs& args) {
     nlohmann::json j = {{"command", "info"},
                         {"scene", p.scene.source},
                         {"triangles", p.scene.triangles.size()},
-                        {"accel", args.scene.accel},
+                        {"accel", SplitMethodName(args.scene.build.method)},
                         {"tree", TreeStatsJson(p.tree.stats)},
                         {"image_bytes", p.image.size()}};
-    outputs.Add(args.json, [&](const std::string& tmp) {
-      std::ofstream f(tmp);
-      f << j.dump(2) << "\n";
-      if (!f) throw InputError(args.json, 0, "cannot write JSON stats");
-    });
+    AddJsonOutput(outputs, args.json, j);
   }
   if (!args.image_out.empty()) {
     outputs.Add(args.image_out, [&](const std::string& tmp) {

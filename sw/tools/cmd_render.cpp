@@ -8,7 +8,10 @@
 #include "common/error.h"
 #include "scene/camera.h"
 #include "tools/commands.h"
-#include "tools/scene_setup.h"
+#include "setup/prepared_scene.h"
+#include "setup/ray_set.h"
+#include "setup/trace_outputs.h"
+#include "tools/scene_options.h"
 #include "trace/images.h"
 #include "trace/output_file.h"
 #include "trace/rays_file.h"
@@ -18,7 +21,7 @@ namespace kdrt::cli {
 namespace {
 
 struct RenderArgs {
-  SceneArgs scene;
+  SceneSpec scene;
   std::string res;
   std::string out;
   std::string hits;
@@ -52,7 +55,7 @@ int Run(const RenderArgs& args) {
       {"command", "render"},
       {"scene", p.scene.source},
       {"triangles", p.scene.triangles.size()},
-      {"accel", args.scene.accel},
+      {"accel", SplitMethodName(args.scene.build.method)},
       {"isect", IsectMethodName(to.isect)},
       {"format", args.format},
       {"width", width},
@@ -100,8 +103,8 @@ Runner AddRenderCommand(CLI::App& app) {
   cmd->add_option("--hits", args->hits, "EXR hit buffer with channels t, prim, u, v");
   cmd->add_option("--json", args->json, "Machine-readable statistics");
   cmd->add_option("--isect", args->isect, "Ray/triangle test: watertight or moller")->capture_default_str();
-  cmd->add_option("--format", args->format, "Number format of traversal and intersection: fp32, fp24, bf16, "
-                                            "fp16 or eXmY")
+  cmd->add_option("--format", args->format, "Number format of traversal and intersection: " + fp::PresetNames() +
+                                                            " or eXmY")
       ->capture_default_str();
   cmd->add_option("--rays", args->rays, "Trace this ray file (KDRTRAYS) instead of the camera");
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");

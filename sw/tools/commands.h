@@ -16,5 +16,6 @@ Runner AddInfoCommand(CLI::App& app);
 Runner AddGenCommand(CLI::App& app);
 Runner AddRaysCommand(CLI::App& app);
 Runner AddSimCommand(CLI::App& app);
+Runner AddCompareCommand(CLI::App& app);
 
 }  // namespace kdrt::cli

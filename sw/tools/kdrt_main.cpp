@@ -15,13 +15,14 @@ int main(int argc, char** argv) {
       kdrt::cli::AddGenCommand(app),
       kdrt::cli::AddRaysCommand(app),
       kdrt::cli::AddSimCommand(app),
+      kdrt::cli::AddCompareCommand(app),
   };
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  try {
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      return app.exit(e);
+    }
     for (const auto& run : runners) {
       const int rc = run();
       if (rc >= 0) return rc;

@@ -1,6 +1,6 @@
 // The memory model (sim/memory_model.h): latency, bandwidth, contents,
 // out-of-range requests; and the model choice of `kdrt sim`
-// (sim/sim_config.h).
+// (sim/core_params.h).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -9,7 +9,7 @@
 #include "common/error.h"
 #include "scenes/gen/generators.h"
 #include "sim/memory_model.h"
-#include "sim/sim_config.h"
+#include "sim/core_params.h"
 #include "trace/memory_image.h"
 
 namespace kdrt::sim {
@@ -153,47 +153,45 @@ TEST(SimConfig, RequirementsFollowTheImage) {
 TEST(SimConfig, PrebuiltModelWhenItCovers) {
   const SceneImage s("room", 300);
   const SceneRequirements req = DeriveRequirements(ImageView(s.bytes));
-  const ConfigChoice c = ChooseConfig(fp::kBf16, req, ConfigOverrides{});
+  const ConfigChoice c = ChooseConfig(fp::kBf16, req, ConfigOverrides{}, 0, false);
   EXPECT_TRUE(c.prebuilt);
   EXPECT_EQ(c.config, DefaultConfig(fp::kBf16));
-  EXPECT_EQ(c.mem_size, uint64_t{1} << c.config.addr_width);
+  EXPECT_EQ(c.mem_size, uint64_t{1} << c.config[kAddrWidth]);
   // A non-preset format has no prebuilt model: one sized for the scene.
-  const ConfigChoice d = ChooseConfig(fp::MakeFormat(6, 9), req, ConfigOverrides{});
+  const ConfigChoice d = ChooseConfig(fp::MakeFormat(6, 9), req, ConfigOverrides{}, 0, false);
   EXPECT_FALSE(d.prebuilt);
-  EXPECT_EQ(d.config.stack_depth, req.stack_depth);
-  EXPECT_EQ(d.config.node_idx_width, req.node_idx_bits);
+  EXPECT_EQ(d.config[kStackDepth], req.stack_depth);
+  EXPECT_EQ(d.config[kNodeIdxWidth], req.node_idx_bits);
 }
 
 TEST(SimConfig, OverridesWinAndTooSmallOnesAreRefused) {
   const SceneImage s("balls", 300);
   const SceneRequirements req = DeriveRequirements(ImageView(s.bytes));
   ConfigOverrides ov;
-  ov.node_cache_lines = 128;
-  const ConfigChoice c = ChooseConfig(fp::kFp32, req, ov);
+  ov.value[kNodeCacheLines] = 128;
+  const ConfigChoice c = ChooseConfig(fp::kFp32, req, ov, 0, false);
   EXPECT_FALSE(c.prebuilt);
-  EXPECT_EQ(c.config.node_cache_lines, 128);
-  EXPECT_EQ(c.config.stack_depth, req.stack_depth);
+  EXPECT_EQ(c.config[kNodeCacheLines], 128);
+  EXPECT_EQ(c.config[kStackDepth], req.stack_depth);
 
   ov = ConfigOverrides{};
-  ov.stack_depth = req.stack_depth - 1;
+  ov.value[kStackDepth] = req.stack_depth - 1;
   try {
-    ChooseConfig(fp::kFp32, req, ov);
+    ChooseConfig(fp::kFp32, req, ov, 0, false);
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(">= " + std::to_string(req.stack_depth)), std::string::npos);
   }
-  ov.allow_overflow = true;
-  EXPECT_EQ(ChooseConfig(fp::kFp32, req, ov).config.stack_depth, req.stack_depth - 1);
+  EXPECT_EQ(ChooseConfig(fp::kFp32, req, ov, 0, /*allow_overflow=*/true).config[kStackDepth], req.stack_depth - 1);
 
   ov = ConfigOverrides{};
-  ov.mem_size = req.image_bytes - 16;
-  EXPECT_THROW(ChooseConfig(fp::kFp32, req, ov), InputError);
+  EXPECT_THROW(ChooseConfig(fp::kFp32, req, ov, /*mem_size=*/req.image_bytes - 16, false), InputError);
   ov = ConfigOverrides{};
-  ov.addr_width = req.addr_bits - 1;
-  EXPECT_THROW(ChooseConfig(fp::kFp32, req, ov), InputError);
+  ov.value[kAddrWidth] = req.addr_bits - 1;
+  EXPECT_THROW(ChooseConfig(fp::kFp32, req, ov, 0, false), InputError);
   ov = ConfigOverrides{};
-  ov.tri_cache_lines = 48;  // not a power of two
-  EXPECT_THROW(ChooseConfig(fp::kFp32, req, ov), InputError);
+  ov.value[kTriCacheLines] = 48;  // not a power of two
+  EXPECT_THROW(ChooseConfig(fp::kFp32, req, ov, 0, false), InputError);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "trace/memory_image.h"
 #include "trace/tracer.h"
 #include "trace/traversal.h"
+#include "trace/hit_compare.h"
 
 namespace kdrt::testing {
 
@@ -57,9 +58,6 @@ Hit BruteForce(const A& a, const ImageView& image, const Ray& ray) {
   return ToHit(a, best);
 }
 
-inline bool SameBits(const Hit& a, const Hit& b) {
-  return a.prim == b.prim && std::memcmp(&a.t, &b.t, 4) == 0 && std::memcmp(&a.u, &b.u, 4) == 0 &&
-         std::memcmp(&a.v, &b.v, 4) == 0;
-}
+using kdrt::SameBits;  // trace/hit_compare.h
 
 }  // namespace kdrt::testing

@@ -1,0 +1,121 @@
+// What a simulated core is built with, and what a scene needs of it.
+//
+// Verilator fixes every rt_core parameter at build time, so each CoreConfig
+// is its own executable. `kdrt sim` derives the scene's needs from its memory
+// image, uses the prebuilt model of the format when that covers them, and
+// otherwise builds (once) a model sized for the scene. Every parameter is a
+// row of sim/core_params.def; nothing here names one parameter by hand except
+// the scene rules.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fp/format.h"
+#include "trace/memory_image.h"
+
+namespace kdrt::sim {
+
+// How `kdrt sim` sizes a parameter when it builds a model for a scene.
+enum class SceneRule {
+  kFormatE,        // the format's exponent bits
+  kFormatM,        // the format's mantissa bits
+  kFixed,          // the default, whatever the scene
+  kTreeDepth,      // the kd-tree's depth (a push happens at most once per level)
+  kNodeIndexBits,  // bits to hold node_count - 1
+  kTriIndexBits,   // bits to hold triangle ids and list entry indices
+  kAddressBits,    // bits to address every byte of the image (at least 12)
+};
+
+struct CoreParam {
+  const char* sv_name;
+  const char* key;
+  const char* flag;
+  int default_value;
+  SceneRule rule;
+  int min, max;
+  bool power_of_two;
+  const char* what;
+};
+
+enum Param {
+#define KDRT_CORE_PARAM(name, ...) k##name,
+#include "sim/core_params.def"
+#undef KDRT_CORE_PARAM
+  kParamCount
+};
+
+inline constexpr CoreParam kCoreParams[kParamCount] = {
+#define KDRT_CORE_PARAM(name, key, flag, def, rule, lo, hi, pow2, what) \
+  {#name, key, flag, def, SceneRule::rule, lo, hi, pow2, what},
+#include "sim/core_params.def"
+#undef KDRT_CORE_PARAM
+};
+
+struct CoreConfig {
+  std::array<int, kParamCount> value{};
+
+  int operator[](Param p) const { return value[p]; }
+  int& operator[](Param p) { return value[p]; }
+  fp::Format Format() const { return fp::Format{value[kE], value[kM]}; }
+  // A file-name-safe identifier, e.g. e8m23-t16-s32-n24-i24-a28-c64.64.64.
+  std::string Key() const;
+  nlohmann::json Json() const;
+  // Verilator's -G<Name>=<value> for every parameter.
+  std::vector<std::string> VerilatorDefines() const;
+  bool operator==(const CoreConfig& o) const { return value == o.value; }
+};
+
+// The configuration of the prebuilt model of a format (built by `make build`).
+CoreConfig DefaultConfig(fp::Format format);
+// Whether `format` has a prebuilt model (the presets).
+bool HasPrebuiltModel(fp::Format format);
+
+// The smallest parameters that run a scene without a stack overflow and
+// without truncating an index or an address.
+struct SceneRequirements {
+  int stack_depth = 1;
+  int node_idx_bits = 1;
+  int tri_idx_bits = 1;
+  int addr_bits = 1;
+  uint64_t image_bytes = 0;
+  uint64_t node_bytes = 0;  // the cache footprint of each section
+  uint64_t list_bytes = 0;
+  uint64_t tri_bytes = 0;
+  nlohmann::json Json() const;
+};
+SceneRequirements DeriveRequirements(const ImageView& image);
+
+// Number of bits to represent every value in 0..max_value (at least 1).
+int BitsFor(uint64_t max_value);
+
+// Parameters the user asked for on the command line; 0 means "not given".
+struct ConfigOverrides {
+  std::array<int, kParamCount> value{};
+};
+
+struct ConfigChoice {
+  CoreConfig config;
+  bool prebuilt = false;  // the format's default model
+  uint64_t mem_size = 0;  // resolved modelled memory in bytes
+};
+
+// The prebuilt model when it covers the scene and no override asks for
+// something else; otherwise the scene's requirements with the overrides on
+// top. `mem_size` is the modelled memory the user asked for (0: 2^AddrWidth);
+// `allow_overflow` accepts a stack smaller than the tree needs. Throws
+// InputError, naming the scene's requirement, when an override is too small
+// for the scene or out of range.
+ConfigChoice ChooseConfig(fp::Format format, const SceneRequirements& req, const ConfigOverrides& ov,
+                          uint64_t mem_size, bool allow_overflow);
+
+// Throws InputError unless `config` can run a scene with `req` (the model's
+// own check, so a model started by hand refuses too).
+void CheckConfigCovers(const CoreConfig& config, const SceneRequirements& req, uint64_t mem_size,
+                       bool allow_overflow);
+
+}  // namespace kdrt::sim

@@ -1,0 +1,178 @@
+#include "sim/model_runner.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "common/error.h"
+#include "trace/images.h"
+#include "trace/rays_file.h"
+
+namespace kdrt::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kBuildDir = KDRT_SIM_BUILD_DIR;
+
+std::string Tail(const std::string& path, size_t lines) {
+  std::ifstream f(path);
+  std::vector<std::string> all;
+  std::string line;
+  while (std::getline(f, line)) all.push_back(line);
+  std::string out;
+  for (size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) out += all[i] + "\n";
+  return out;
+}
+
+// A directory that is removed with everything in it when it goes out of scope.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "kdrt-sim-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary directory in " + pattern);
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string File(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  fs::path path_;
+};
+
+int RunAndWait(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+  if (pid == 0) {
+    // Models with SystemC linked in would print its banner on stdout.
+    setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
+    execv(argv[0], argv.data());
+    std::fprintf(stderr, "kdrt: internal error: cannot start %s: %s\n", argv[0], std::strerror(errno));
+    _exit(2);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+  }
+  if (WIFSIGNALED(status)) {
+    throw std::runtime_error(args[0] + " was killed by signal " + std::to_string(WTERMSIG(status)));
+  }
+  return WEXITSTATUS(status);
+}
+
+}  // namespace
+
+ModelLocation LocateModel(const ConfigChoice& choice) {
+  ModelLocation loc;
+  if (choice.prebuilt) {
+    const std::string name = "kdrt-sim-" + choice.config.Format().Name();
+    loc = {std::string(kBuildDir) + "/bin/" + name, name};
+  } else {
+    const std::string key = choice.config.Key();
+    loc = {std::string(kBuildDir) + "/sim-models/" + key + "/kdrt-sim", "kdrt-sim-model-" + key};
+  }
+  loc.built = fs::exists(loc.path);
+  return loc;
+}
+
+void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
+#if defined(KDRT_SIM_MODELS)
+  const fs::path models_dir = fs::path(kBuildDir) / "sim-models";
+  fs::create_directories(models_dir);
+  const std::string lock_path = (models_dir / ".lock").string();
+  const int lock = open(lock_path.c_str(), O_CREAT | O_RDWR, 0644);
+  if (lock < 0 || flock(lock, LOCK_EX) != 0) throw std::runtime_error("cannot lock " + lock_path);
+  struct Unlock {
+    int fd;
+    ~Unlock() { close(fd); }
+  } unlock{lock};
+  if (fs::exists(loc.path)) return;  // another run built it meanwhile
+
+  if (!choice.prebuilt) {
+    // The list sim/CMakeLists.txt defines a target per line of: the key and
+    // Verilator's -G options.
+    std::string line = choice.config.Key();
+    for (const std::string& g : choice.config.VerilatorDefines()) line += " " + g;
+    const fs::path list = models_dir / "models.txt";
+    bool listed = false;
+    {
+      std::ifstream in(list);
+      std::string l;
+      while (std::getline(in, l)) listed = listed || l == line;
+    }
+    if (!listed) {
+      std::ofstream out(list, std::ios::app);
+      out << line << "\n";
+      if (!out) throw std::runtime_error("cannot write " + list.string());
+    }
+  }
+  const std::string log = (models_dir / (choice.config.Key() + ".build.log")).string();
+  std::fprintf(stderr,
+               "kdrt sim: building the simulation model %s (Verilator, once; about 1-2 minutes on 2 cores)\n"
+               "kdrt sim: log in %s\n",
+               choice.config.Key().c_str(), log.c_str());
+  const auto start = std::chrono::steady_clock::now();
+  // Configure first: the new line in models.txt defines the target.
+  const std::string cmake = std::string("'") + KDRT_CMAKE_COMMAND + "'";
+  const std::string cmd = cmake + " '" + kBuildDir + "' > '" + log + "' 2>&1 && " + cmake + " --build '" +
+                          kBuildDir + "' --target " + loc.target + " -j 2 >> '" + log + "' 2>&1";
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0 || !fs::exists(loc.path)) {
+    throw std::runtime_error("building the simulation model " + choice.config.Key() + " failed; the end of " + log +
+                             ":\n" + Tail(log, 25));
+  }
+  std::fprintf(stderr, "kdrt sim: model built in %.0f s\n",
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+#else
+  (void)choice;
+  (void)loc;
+  throw InputError("kdrt sim: no simulation models in this build: Verilator was not found, or rtl/rt_core.sv did "
+                   "not elaborate when CMake last configured (see its warning; re-run cmake)");
+#endif
+}
+
+ModelRun RunModel(const ModelLocation& loc, const CoreConfig& config, const std::vector<uint8_t>& image,
+                  const std::vector<Ray>& rays, const RunOptions& run, const std::string& trace_path) {
+  TempDir dir;
+  const std::string image_path = dir.File("image.bin"), rays_path = dir.File("rays.bin");
+  const std::string hits_path = dir.File("hits.exr"), report_path = dir.File("report.json");
+  {
+    std::ofstream f(image_path, std::ios::binary);
+    f.write(reinterpret_cast<const char*>(image.data()), static_cast<std::streamsize>(image.size()));
+    if (!f) throw std::runtime_error("cannot write " + image_path);
+  }
+  WriteRaysFile(rays_path, rays);
+
+  std::vector<std::string> args = {loc.path,   "--expect-model", config.Key(), "--image",     image_path,
+                                   "--rays",   rays_path,        "--hits-out", hits_path,     "--report-out",
+                                   report_path};
+  for (std::string& a : RunOptionArgs(run, trace_path)) args.push_back(std::move(a));
+  ModelRun out;
+  out.exit_code = RunAndWait(args);
+  if (out.exit_code != 0) return out;
+  int width = 0, height = 0;
+  out.hits = ReadHitBuffer(hits_path, &width, &height);
+  if (out.hits.size() != rays.size()) throw std::runtime_error("the model returned " + std::to_string(out.hits.size()) +
+                                                               " hit records for " + std::to_string(rays.size()) + " rays");
+  std::ifstream f(report_path);
+  out.report = nlohmann::json::parse(f);
+  return out;
+}
+
+}  // namespace kdrt::sim

@@ -1,0 +1,44 @@
+// The `kdrt sim` front end's side of a model executable: where the model of a
+// configuration lives, building it once when it is missing, and running it on
+// a memory image and a ray set that the front end has already built.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "common/ray.h"
+#include "sim/core_params.h"
+#include "sim/run_options.h"
+
+namespace kdrt::sim {
+
+struct ModelLocation {
+  std::string path;    // the executable
+  std::string target;  // its CMake target
+  bool built = false;
+};
+ModelLocation LocateModel(const ConfigChoice& choice);
+
+// Builds the model with CMake in the build tree this program belongs to
+// (a few minutes; progress and the log path on stderr). A lock keeps
+// concurrent runs from building at the same time. Throws on failure, with the
+// end of the build log.
+void BuildModel(const ConfigChoice& choice, const ModelLocation& location);
+
+struct ModelRun {
+  int exit_code = 0;         // the model's: 0, 1 (bad input), 3 (mismatch, timeout)
+  std::vector<Hit> hits;     // by ray, when exit_code == 0
+  nlohmann::json report;     // ReportJson of the run, when exit_code == 0
+};
+
+// Hands the image and the rays to the model through files in a temporary
+// directory, runs it with `run` (waveform to `trace_path`, if set), and reads
+// back its hit records and report. The model's messages go to stderr as they
+// come.
+ModelRun RunModel(const ModelLocation& location, const CoreConfig& config, const std::vector<uint8_t>& image,
+                  const std::vector<Ray>& rays, const RunOptions& run, const std::string& trace_path);
+
+}  // namespace kdrt::sim

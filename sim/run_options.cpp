@@ -1,0 +1,62 @@
+#include "sim/run_options.h"
+
+#include <cmath>
+
+#include "common/error.h"
+
+namespace kdrt::sim {
+
+void AddRunOptions(CLI::App& cmd, RunOptions& o) {
+  cmd.add_option("--mem-latency", o.mem_latency, "Memory latency in cycles (>= 1)")->capture_default_str();
+  cmd.add_option("--mem-bw", o.mem_bw, "Memory bandwidth in bytes per cycle (fractions allowed; the port carries "
+                                       "at most 16)")
+      ->capture_default_str();
+  cmd.add_option("--mem-size", o.mem_size, "Modelled memory in bytes (default: 2^address width)");
+  cmd.add_flag("--allow-overflow", o.allow_overflow,
+               "Accept a --stack-depth below the tree depth (overflowing rays are counted and reported)");
+  cmd.add_option("--timeout", o.timeout, "Fail after this many cycles without a hit record")->capture_default_str();
+  cmd.add_option("--trace", o.trace, "Write an FST waveform of the core");
+  cmd.add_option("--trace-ray", o.trace_ray, "With --trace: dump only while ray K (its index) is in flight");
+  cmd.add_flag("--progress", o.progress, "Progress line on stderr (default: when stderr is a terminal)");
+  cmd.add_flag("--systemc", o.systemc, "Run the core inside the SystemC top");
+  // Hidden: lets the tests see the co-simulation checker fire.
+  cmd.add_option("--corrupt-reference", o.corrupt_reference,
+                 "Test hook: change the expected record of ray K so the checker must report it")
+      ->group("");
+}
+
+void CheckRunOptions(const RunOptions& o) {
+  if (o.trace_ray >= 0 && o.trace.empty()) throw InputError("--trace-ray needs --trace FILE");
+  if (o.mem_latency < 1) throw InputError("--mem-latency must be at least 1 cycle");
+  if (!(o.mem_bw > 0) || !std::isfinite(o.mem_bw)) throw InputError("--mem-bw must be a positive number");
+  if (o.timeout < 1) throw InputError("--timeout must be at least 1 cycle");
+}
+
+std::vector<std::string> RunOptionArgs(const RunOptions& o, const std::string& trace_path) {
+  char bw[64];
+  std::snprintf(bw, sizeof bw, "%.17g", o.mem_bw);
+  std::vector<std::string> a = {"--mem-latency", std::to_string(o.mem_latency), "--mem-bw", bw,
+                                "--timeout", std::to_string(o.timeout)};
+  if (o.mem_size) a.insert(a.end(), {"--mem-size", std::to_string(o.mem_size)});
+  if (o.allow_overflow) a.push_back("--allow-overflow");
+  if (!trace_path.empty()) a.insert(a.end(), {"--trace", trace_path});
+  if (o.trace_ray >= 0) a.insert(a.end(), {"--trace-ray", std::to_string(o.trace_ray)});
+  if (o.progress) a.push_back("--progress");
+  if (o.systemc) a.push_back("--systemc");
+  if (o.corrupt_reference >= 0) a.insert(a.end(), {"--corrupt-reference", std::to_string(o.corrupt_reference)});
+  return a;
+}
+
+void AddParamOptions(CLI::App& cmd, ConfigOverrides& ov) {
+  for (int i = 0; i < kParamCount; ++i) {
+    const CoreParam& p = kCoreParams[i];
+    if (p.flag[0] == '\0') continue;
+    std::string help = std::string(1, static_cast<char>(std::toupper(p.what[0]))) + (p.what + 1) + " (" +
+                       p.sv_name + "; default " + std::to_string(p.default_value);
+    if (p.rule != SceneRule::kFixed) help += ", or what the scene needs";
+    if (p.power_of_two) help += "; a power of two";
+    cmd.add_option(p.flag, ov.value[i], help + ")");
+  }
+}
+
+}  // namespace kdrt::sim

@@ -1,0 +1,40 @@
+// The options of one simulation run that the `kdrt sim` front end and the
+// model executable share: the front end registers them on `kdrt sim`, checks
+// them, and hands them to the model as command-line arguments; the model
+// registers the very same options.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "sim/core_params.h"
+
+namespace kdrt::sim {
+
+struct RunOptions {
+  uint32_t mem_latency = 20;
+  double mem_bw = 16.0;
+  uint64_t mem_size = 0;       // bytes of modelled memory; 0: 2^AddrWidth
+  bool allow_overflow = false;  // accept a stack smaller than the tree needs
+  uint64_t timeout = 1000000;  // cycles without a hit record
+  std::string trace;           // FST waveform
+  int64_t trace_ray = -1;      // dump only while this ray is in flight
+  bool progress = false;
+  bool systemc = false;
+  int64_t corrupt_reference = -1;  // test hook: falsify the reference of this ray
+};
+
+void AddRunOptions(CLI::App& cmd, RunOptions& options);
+// Throws InputError on inconsistent options (e.g. --trace-ray without --trace).
+void CheckRunOptions(const RunOptions& options);
+// The options as arguments for the model executable (trace: `trace_path`).
+std::vector<std::string> RunOptionArgs(const RunOptions& options, const std::string& trace_path);
+
+// One option per row of sim/core_params.def that has a flag (front end only:
+// a model cannot change what it was built with).
+void AddParamOptions(CLI::App& cmd, ConfigOverrides& overrides);
+
+}  // namespace kdrt::sim

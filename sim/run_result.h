@@ -1,0 +1,32 @@
+// What one run of the core returns: plain data, no Verilator types, so the
+// report (sim/sim_report.h) builds without a model.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "common/ray.h"
+#include "sim/perf_layout.h"  // generated from perf_t in rtl/kdrt_pkg.sv
+
+namespace kdrt::sim {
+
+struct HarnessResult {
+  uint64_t cycles = 0;
+  std::array<uint64_t, kPerfBits> perf{};  // cycles in which each perf_o bit was set
+  std::vector<Hit> hits;                   // by ray id, as the RTL returned them
+  std::vector<uint8_t> overflow;           // by ray id: the record had hit_overflow_o
+  uint64_t overflows = 0;
+  uint64_t hit_count = 0;
+  uint64_t max_in_flight = 0;
+  double wall_seconds = 0;
+};
+
+struct RunOutcome {
+  HarnessResult result;
+  uint64_t mem_bytes_read = 0;
+  uint64_t mem_requests = 0;
+  uint64_t mem_max_outstanding = 0;
+};
+
+}  // namespace kdrt::sim

@@ -1,0 +1,71 @@
+#include "setup/prepared_scene.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "common/error.h"
+#include "scenes/gen/generators.h"
+#include "trace/memory_image.h"
+
+namespace kdrt {
+
+PreparedScene PrepareScene(const SceneSpec& spec) {
+  PreparedScene p;
+  const auto start = std::chrono::steady_clock::now();
+  if (spec.scene.rfind("gen:", 0) == 0) {
+    const std::string rest = spec.scene.substr(4);
+    const size_t colon = rest.find(':');
+    const std::string name = rest.substr(0, colon);
+    int size = 1000;
+    if (colon != std::string::npos) {
+      try {
+        size = std::stoi(rest.substr(colon + 1));
+      } catch (const std::exception&) {
+        throw InputError(spec.scene + ": size after the generator name is not an integer");
+      }
+    }
+    p.scene = GenerateScene(name, size);
+  } else {
+    LoadOptions lo;
+    if (spec.sphere_segments > 0) lo.sphere_segments = spec.sphere_segments;
+    p.scene = LoadScene(spec.scene, lo);
+  }
+  p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  p.tree = BuildKdTree(p.scene, spec.build);
+  p.image = BuildMemoryImage(p.scene, p.tree);
+  return p;
+}
+
+nlohmann::json TreeStatsJson(const TreeStats& s) {
+  return {{"nodes", s.nodes},
+          {"inner_nodes", s.inner_nodes},
+          {"leaves", s.leaves},
+          {"empty_leaves", s.empty_leaves},
+          {"max_depth", s.max_depth},
+          {"avg_leaf_depth", s.avg_leaf_depth},
+          {"max_leaf_prims", s.max_leaf_prims},
+          {"avg_leaf_prims", s.avg_leaf_prims},
+          {"references", s.references},
+          {"refs_per_triangle", s.refs_per_triangle},
+          {"sah_cost", s.sah_cost},
+          {"degenerate_triangles", s.degenerate_triangles},
+          {"build_seconds", s.build_seconds}};
+}
+
+void PrintTreeStats(const PreparedScene& p) {
+  const TreeStats& s = p.tree.stats;
+  std::printf("scene          %s\n", p.scene.source.c_str());
+  std::printf("triangles      %zu (%u degenerate, left out of the tree)\n", p.scene.triangles.size(),
+              s.degenerate_triangles);
+  std::printf("kd-tree        %u nodes: %u inner, %u leaves (%u empty)\n", s.nodes, s.inner_nodes, s.leaves,
+              s.empty_leaves);
+  std::printf("depth          max %u, avg leaf %.2f\n", s.max_depth, s.avg_leaf_depth);
+  std::printf("leaf triangles max %u, avg %.2f (non-empty leaves)\n", s.max_leaf_prims, s.avg_leaf_prims);
+  std::printf("references     %llu (%.2f per triangle)\n", static_cast<unsigned long long>(s.references),
+              s.refs_per_triangle);
+  std::printf("SAH cost       %.2f\n", s.sah_cost);
+  std::printf("build time     %.3f s (load %.3f s)\n", s.build_seconds, p.load_seconds);
+  std::printf("memory image   %zu bytes\n", p.image.size());
+}
+
+}  // namespace kdrt

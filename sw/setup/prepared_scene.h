@@ -1,0 +1,37 @@
+// What every scene-reading command and the `kdrt sim` front end share: the
+// scene argument (a file, or gen:NAME:SIZE for a procedural scene), building
+// the tree and the memory image, and reporting them. Used by `kdrt render`,
+// `kdrt info` and `kdrt sim`; the simulation models never load a scene.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "accel/kdtree.h"
+#include "scene/scene.h"
+
+namespace kdrt {
+
+struct SceneSpec {
+  std::string scene;        // a file or gen:NAME:SIZE
+  int sphere_segments = 0;  // 0: loader default
+  BuildOptions build;
+};
+
+struct PreparedScene {
+  Scene scene;
+  KdTree tree;
+  std::vector<uint8_t> image;
+  double load_seconds = 0;
+};
+
+// Loads (or generates) the scene, builds the tree and the memory image.
+PreparedScene PrepareScene(const SceneSpec& spec);
+
+nlohmann::json TreeStatsJson(const TreeStats& s);
+void PrintTreeStats(const PreparedScene& p);
+
+}  // namespace kdrt

@@ -1,0 +1,64 @@
+// The core parameter table (sim/core_params.def) against what it describes:
+// rt_core.sv's own defaults, and the prebuilt models, which report the
+// parameters they were really built with (`kdrt-sim-<fmt> --config`).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/core_params.h"
+
+namespace kdrt::sim {
+namespace {
+
+std::string ReadText(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+TEST(CoreParams, TableDefaultsAreTheRtlDefaults) {
+  const std::string sv = ReadText(std::string(KDRT_SOURCE_DIR) + "/rtl/rt_core.sv");
+  ASSERT_FALSE(sv.empty());
+  for (const CoreParam& p : kCoreParams) {
+    const std::regex decl("parameter int unsigned " + std::string(p.sv_name) +
+                          R"( /\*verilator public\*/ = (\d+))");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(sv, m, decl)) << p.sv_name << " is not a public parameter of rt_core";
+    EXPECT_EQ(std::stoi(m[1]), p.default_value) << p.sv_name;
+  }
+}
+
+TEST(CoreParams, KeyNamesEveryParameter) {
+  CoreConfig c = DefaultConfig(fp::kFp32);
+  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.64");
+  c[kTriCacheLines] = 128;
+  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.128");
+  EXPECT_EQ(c.Json()["TriCacheLines"], 128);
+  EXPECT_EQ(c.VerilatorDefines().back(), "-GTriCacheLines=128");
+}
+
+TEST(CoreParams, PrebuiltModelsAreBuiltWithTheDefaults) {
+  for (const fp::Format& f : fp::Presets()) {
+    // The variable keeps a SystemC model from printing its banner on stdout.
+    const std::string cmd =
+        "SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 " + std::string(KDRT_MODEL_DIR) + "/kdrt-sim-" + f.Name() + " --config";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string out;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+    ASSERT_EQ(pclose(pipe), 0) << cmd;
+    EXPECT_EQ(nlohmann::json::parse(out), DefaultConfig(f).Json()) << cmd;
+  }
+}
+
+}  // namespace
+}  // namespace kdrt::sim
