@@ -9,6 +9,7 @@
 
 #include "tests/common/run_kdrt.h"
 
+#include <sys/inotify.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -253,6 +254,32 @@ TEST_F(SimCli, TraceWritesAnFstWaveform) {
   EXPECT_EQ(all[0], 0) << "an FST file starts with its header block (type 0)";
   EXPECT_LT(one.size(), all.size()) << "one ray's window is a part of the whole run";
   EXPECT_NE(RunKdrt("sim " + common + " --trace-ray 5").exit_code, 0) << "--trace-ray needs --trace";
+}
+
+// The scene file is opened once per run (by the front end; the model gets
+// the memory image): inotify counts the opens of the file while kdrt runs.
+TEST_F(SimCli, SceneFileIsOpenedOnce) {
+  const std::string scene = Path("scene.nff");
+  {
+    std::ifstream in(std::string(KDRT_SOURCE_DIR) + "/scenes/simple.nff");
+    std::ofstream out(scene);
+    out << in.rdbuf();
+  }
+  const int fd = inotify_init1(IN_NONBLOCK);
+  ASSERT_GE(fd, 0);
+  ASSERT_GE(inotify_add_watch(fd, scene.c_str(), IN_OPEN), 0);
+  const RunResult s = RunKdrt("sim " + scene + " --res 8x8 -q -o " + Path("x.png"));
+  ASSERT_EQ(s.exit_code, 0) << s.output;
+  int opens = 0;
+  alignas(inotify_event) char buf[4096];
+  ssize_t n;
+  while ((n = read(fd, buf, sizeof buf)) > 0) {
+    for (char* p = buf; p < buf + n; p += sizeof(inotify_event) + reinterpret_cast<inotify_event*>(p)->len) {
+      opens += (reinterpret_cast<inotify_event*>(p)->mask & IN_OPEN) != 0;
+    }
+  }
+  close(fd);
+  EXPECT_EQ(opens, 1);
 }
 
 TEST_F(SimCli, CompareReportsTheFirstDifference) {
