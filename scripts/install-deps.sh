@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libopenimageio-dev openimageio-tools
-  libassimp-dev libtinyobjloader-dev libcli11-dev nlohmann-json3-dev
+  libtinyobjloader-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libembree-dev libmpfr-dev libgmp-dev
   verilator libsystemc-dev yosys
 )

@@ -1,5 +1,7 @@
 // The per-format loaders behind LoadScene (scene.cpp picks one by extension).
-// Each returns the triangles in file order and throws InputError.
+// Each returns the triangles in file order and throws InputError; the rules
+// common to all formats are checked in one place each (finite numbers:
+// RequireFinite in text_fields.h; a non-empty scene: LoadScene).
 #pragma once
 
 #include <string>
@@ -10,6 +12,7 @@ namespace kdrt {
 
 Scene LoadNff(const std::string& path, const LoadOptions& options);
 Scene LoadObj(const std::string& path);
-Scene LoadWithAssimp(const std::string& path, bool is_ply);  // PLY or OFF
+Scene LoadPly(const std::string& path);
+Scene LoadOff(const std::string& path);
 
 }  // namespace kdrt

@@ -60,7 +60,6 @@ class NffReader {
         Fail("unknown keyword '" + std::string(key.substr(0, 40)) + "'");
       }
     }
-    if (scene_.triangles.empty()) throw InputError(path_, 0, "scene has no triangles");
     return std::move(scene_);
   }
 

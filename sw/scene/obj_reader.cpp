@@ -1,8 +1,10 @@
 // Wavefront OBJ through tinyobjloader, with its triangulation turned off so
 // polygons are fanned here in file order (the numbering contract).
 // tinyobjloader silently reads a malformed number as 0 and does not say on
-// which line a face is wrong, so a first pass over the `v` and `f` lines
-// checks numbers and indices and reports file:line itself.
+// which line a face is wrong, so kdrt's own pass over the `v` and `f` lines
+// is the one validation: numbers, face sizes and indices, with file:line.
+// What tinyobjloader then returns is used as is (it also reads the .mtl
+// colours and keeps tinyobjloader's rounding of the numbers).
 #include <charconv>
 #include <string>
 #include <string_view>
@@ -40,18 +42,12 @@ void CheckCorner(std::string_view corner, long vertices, const TextPos& pos) {
 
 void CheckObjText(const std::string& path) {
   const std::string text = ReadWholeFile(path);
+  LineCursor lines(text);
   std::vector<std::string_view> fields;
   long vertices = 0;
-  int line_no = 0;
-  size_t offset = 0;
-  while (offset < text.size()) {
-    size_t end = text.find('\n', offset);
-    if (end == std::string::npos) end = text.size();
-    std::string_view line(text.data() + offset, end - offset);
-    offset = end + 1;
-    ++line_no;
-    SplitFields(line, &fields);
+  while (lines.Next(&fields, false)) {
     if (fields.empty()) continue;
+    const int line_no = lines.line();
     const TextPos pos{&path, line_no};
     if (fields[0] == "v") {
       // x y z, optionally w, or x y z r g b (vertex colours).
@@ -89,7 +85,6 @@ Scene LoadObj(const std::string& path) {
   }
   const std::vector<tinyobj::real_t>& xyz = reader.GetAttrib().vertices;
   const std::vector<tinyobj::material_t>& materials = reader.GetMaterials();
-  const size_t vertex_count = xyz.size() / 3;
 
   Scene scene;
   scene.source = path;
@@ -102,17 +97,15 @@ Scene LoadObj(const std::string& path) {
     size_t next = 0;
     for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
       const size_t n = mesh.num_face_vertices[f];
-      if (next + n > mesh.indices.size()) throw InputError(path, 0, "OBJ: inconsistent face data");
       polygon.clear();
+      // Checked accesses: not a second validation (CheckObjText vouches for
+      // the indices), only so that a disagreement with tinyobjloader can
+      // never read out of bounds.
       for (size_t k = 0; k < n; ++k) {
-        int vi = mesh.indices[next + k].vertex_index;
-        if (vi < 0 || static_cast<size_t>(vi) >= vertex_count) {
-          throw InputError(path, 0, "OBJ: face vertex index out of range");
-        }
-        polygon.emplace_back(xyz[3 * vi], xyz[3 * vi + 1], xyz[3 * vi + 2]);
+        const size_t vi = static_cast<size_t>(mesh.indices.at(next + k).vertex_index);
+        polygon.emplace_back(xyz.at(3 * vi), xyz.at(3 * vi + 1), xyz.at(3 * vi + 2));
       }
       next += n;
-      if (n < 3) throw InputError(path, 0, "OBJ: face with fewer than 3 vertices");
       int mat = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
       if (mat >= 0 && static_cast<size_t>(mat) < materials.size()) {
         const tinyobj::real_t* kd = materials[mat].diffuse;

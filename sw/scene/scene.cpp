@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <string>
 
 #include "common/error.h"
@@ -24,22 +23,6 @@ std::string LowerExtension(const std::string& path) {
   return ext;
 }
 
-bool Finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-// The loaders already reject bad numbers where they can say on which line;
-// this is the last line of defence for what the libraries let through.
-void CheckLoaded(const Scene& scene, const std::string& path) {
-  if (scene.triangles.empty()) throw InputError(path, 0, "scene has no triangles");
-  for (size_t i = 0; i < scene.triangles.size(); ++i) {
-    const Triangle& t = scene.triangles[i];
-    if (!Finite(t.v0) || !Finite(t.v1) || !Finite(t.v2)) {
-      throw InputError(path, 0, "triangle " + std::to_string(i) + " has a NaN or Inf coordinate");
-    }
-  }
-}
-
 }  // namespace
 
 Scene LoadScene(const std::string& path) { return LoadScene(path, LoadOptions()); }
@@ -56,14 +39,18 @@ Scene LoadScene(const std::string& path, const LoadOptions& options) {
     scene = LoadNff(path, options);
   } else if (ext == "obj") {
     scene = LoadObj(path);
-  } else if (ext == "ply" || ext == "off") {
-    scene = LoadWithAssimp(path, ext == "ply");
+  } else if (ext == "ply") {
+    scene = LoadPly(path);
+  } else if (ext == "off") {
+    scene = LoadOff(path);
   } else {
     throw InputError(path, 0,
                      "unknown scene file extension '" + ext +
                          "' (expected .nff, .obj, .ply, .off)");
   }
-  CheckLoaded(scene, path);
+  // The one check of the scene as a whole, for every format. Coordinates were
+  // checked as they were read (RequireFinite), where the line is known.
+  if (scene.triangles.empty()) throw InputError(path, 0, "scene has no triangles");
   return scene;
 }
 

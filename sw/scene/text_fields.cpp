@@ -23,6 +23,25 @@ void SplitFields(std::string_view line, std::vector<std::string_view>* fields) {
   }
 }
 
+bool LineCursor::Next(std::vector<std::string_view>* fields, bool skip_comments) {
+  while (offset_ < text_.size()) {
+    size_t end = text_.find('\n', offset_);
+    if (end == std::string::npos) end = text_.size();
+    std::string_view line(text_.data() + offset_, end - offset_);
+    offset_ = end + 1;
+    ++line_;
+    if (skip_comments) line = line.substr(0, line.find('#'));
+    SplitFields(line, fields);
+    if (fields->empty() && skip_comments) continue;
+    return true;
+  }
+  return false;
+}
+
+void FailNotFinite(const TextPos& pos, const std::string& what) {
+  throw InputError(*pos.file, pos.line, what + " is not finite (NaN or Inf)");
+}
+
 namespace {
 
 std::string Quote(std::string_view s) {
@@ -32,14 +51,34 @@ std::string Quote(std::string_view s) {
   return q + "'";
 }
 
+// from_chars rejects a leading '+', which C's printf never writes but
+// hand-written files sometimes do. A second sign after it stays, so that
+// from_chars still rejects "+-1".
+std::string_view WithoutPlus(std::string_view field) {
+  if (field.size() >= 2 && field[0] == '+' && field[1] != '+' && field[1] != '-') {
+    field.remove_prefix(1);
+  }
+  return field;
+}
+
 }  // namespace
 
+bool ParseDouble(std::string_view field, double* value) {
+  std::string_view digits = WithoutPlus(field);
+  const char* end = digits.data() + digits.size();
+  auto [ptr, ec] = std::from_chars(digits.data(), end, *value);
+  return ec == std::errc() && ptr == end && !digits.empty();
+}
+
+bool ParseInteger(std::string_view field, long long* value) {
+  std::string_view digits = WithoutPlus(field);
+  const char* end = digits.data() + digits.size();
+  auto [ptr, ec] = std::from_chars(digits.data(), end, *value);
+  return ec == std::errc() && ptr == end && !digits.empty();
+}
+
 float ParseFloat(std::string_view field, const TextPos& pos, const char* what) {
-  // from_chars rejects a leading '+', which C's printf never writes but
-  // hand-written files sometimes do.
-  std::string_view digits = field;
-  if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
-  bool sign_ok = digits.empty() || (digits[0] != '+' && (digits[0] != '-' || digits == field));
+  std::string_view digits = WithoutPlus(field);
   float value = 0.0f;
   const char* end = digits.data() + digits.size();
   auto [ptr, ec] = std::from_chars(digits.data(), end, value);
@@ -47,14 +86,11 @@ float ParseFloat(std::string_view field, const TextPos& pos, const char* what) {
     throw InputError(*pos.file, pos.line,
                      std::string(what) + " " + Quote(field) + " is out of float range");
   }
-  if (ec != std::errc() || ptr != end || digits.empty() || !sign_ok) {
+  if (ec != std::errc() || ptr != end || digits.empty()) {
     throw InputError(*pos.file, pos.line,
                      std::string(what) + ": expected a number, got " + Quote(field));
   }
-  if (!std::isfinite(value)) {
-    throw InputError(*pos.file, pos.line,
-                     std::string(what) + " " + Quote(field) + " is not finite (NaN or Inf)");
-  }
+  RequireFinite(value, pos, [&] { return std::string(what) + " " + Quote(field); });
   return value;
 }
 
