@@ -10,7 +10,6 @@
 
 #include "common/error.h"
 #include "scene/loaders.h"
-#include "scene/mesh_decimal.h"
 #include "scene/scene_builder.h"
 #include "scene/text_fields.h"
 
@@ -55,7 +54,7 @@ Scene LoadOff(const std::string& path) {
     const TextPos pos{&path, lines.line()};
     glm::vec3 v;
     for (int axis = 0; axis < 3; ++axis) {
-      if (!ParseAssimpDecimal(f[axis], &v[axis])) {
+      if (!ParseFloatBits(f[axis], &v[axis])) {
         fail("vertex coordinate: expected a number, got " + quote(f[axis]));
       }
       RequireFinite(v[axis], pos, [&] { return "vertex coordinate " + quote(f[axis]); });

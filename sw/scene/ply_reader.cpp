@@ -16,7 +16,6 @@
 
 #include "common/error.h"
 #include "scene/loaders.h"
-#include "scene/mesh_decimal.h"
 #include "scene/ply_header.h"
 #include "scene/scene_builder.h"
 #include "scene/text_fields.h"
@@ -50,10 +49,10 @@ class AsciiValues {
     std::string_view s = Next();
     if (t == PlyType::kFloat32) {
       float v;
-      if (ParseAssimpDecimal(s, &v)) return v;
+      if (ParseFloatBits(s, &v)) return v;
     } else if (t == PlyType::kFloat64) {
       double v;
-      if (ParseAssimpDecimal(s, &v)) return static_cast<float>(v);
+      if (ParseDouble(s, &v)) return static_cast<float>(v);
     } else {
       long long v;
       if (ParseInteger(s, &v)) return static_cast<float>(v);
@@ -122,7 +121,7 @@ class BinaryValues {
   }
   void EndEntry() {}
 
-  // A double holds every PLY value exactly, so this rounds once, like assimp.
+  // A double holds every PLY value exactly, so this rounds once.
   float Coordinate(PlyType t) { return static_cast<float>(Read(t)); }
   long long Integer(PlyType t, const char* what) {
     const double v = Read(t);

@@ -70,6 +70,21 @@ bool ParseDouble(std::string_view field, double* value) {
   return ec == std::errc() && ptr == end && !digits.empty();
 }
 
+bool ParseFloatBits(std::string_view field, float* value) {
+  std::string_view digits = WithoutPlus(field);
+  const char* end = digits.data() + digits.size();
+  auto [ptr, ec] = std::from_chars(digits.data(), end, *value);
+  if (ec == std::errc::result_out_of_range && ptr == end) {
+    // Beyond float's range: the IEEE result (an infinity, or a zero), which
+    // the caller's finiteness check then names.
+    double wide;
+    if (!ParseDouble(field, &wide)) return false;
+    *value = static_cast<float>(wide);
+    return true;
+  }
+  return ec == std::errc() && ptr == end && !digits.empty();
+}
+
 bool ParseInteger(std::string_view field, long long* value) {
   std::string_view digits = WithoutPlus(field);
   const char* end = digits.data() + digits.size();

@@ -1,7 +1,7 @@
 // Line and number scanning shared by the text loaders. Numbers are read with
 // std::from_chars: locale-independent and correctly rounded straight to
-// float, so "%.9g" output reads back bit-exactly. (PLY and OFF coordinates
-// are the exception, see mesh_decimal.h.)
+// float, so "%.9g" output reads back bit-exactly, and a number reads to the
+// same bits in NFF, OBJ, PLY and OFF.
 #pragma once
 
 #include <cmath>
@@ -57,6 +57,9 @@ int ParseInt(std::string_view field, const TextPos& pos, const char* what, int l
 // Syntax checks without a message: true if the whole field is a number
 // (double range; "nan" and "inf" included) / an integer.
 bool ParseDouble(std::string_view field, double* value);
+// The whole field as the nearest float (the rounding ParseFloat uses, so a
+// number reads to the same bits in every format).
+bool ParseFloatBits(std::string_view field, float* value);
 bool ParseInteger(std::string_view field, long long* value);
 
 // Three consecutive fields starting at `first`.
