@@ -175,4 +175,14 @@ ModelRun RunModel(const ModelLocation& loc, const CoreConfig& config, const std:
   return out;
 }
 
+ModelRun Simulate(const std::vector<uint8_t>& image, const std::vector<Ray>& rays, fp::Format format,
+                  RunOptions run) {
+  const SceneRequirements req = DeriveRequirements(ImageView(image));
+  const ConfigChoice choice = ChooseConfig(format, req, ConfigOverrides{}, run.mem_size, run.allow_overflow);
+  const ModelLocation loc = LocateModel(choice);
+  if (!loc.built) BuildModel(choice, loc);
+  run.mem_size = choice.mem_size;
+  return RunModel(loc, choice.config, image, rays, run, "");
+}
+
 }  // namespace kdrt::sim

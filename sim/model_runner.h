@@ -41,4 +41,9 @@ struct ModelRun {
 ModelRun RunModel(const ModelLocation& location, const CoreConfig& config, const std::vector<uint8_t>& image,
                   const std::vector<Ray>& rays, const RunOptions& run, const std::string& trace_path);
 
+// The whole way for a caller without options: what the image requires, the
+// model of `format` that covers it (built when missing), and its run.
+ModelRun Simulate(const std::vector<uint8_t>& image, const std::vector<Ray>& rays, fp::Format format,
+                  RunOptions run);
+
 }  // namespace kdrt::sim

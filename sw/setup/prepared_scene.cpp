@@ -9,9 +9,9 @@
 
 namespace kdrt {
 
-PreparedScene PrepareScene(const SceneSpec& spec) {
-  PreparedScene p;
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+Scene LoadOrGenerate(const SceneSpec& spec) {
   if (spec.scene.rfind("gen:", 0) == 0) {
     const std::string rest = spec.scene.substr(4);
     const size_t colon = rest.find(':');
@@ -24,14 +24,28 @@ PreparedScene PrepareScene(const SceneSpec& spec) {
         throw InputError(spec.scene + ": size after the generator name is not an integer");
       }
     }
-    p.scene = GenerateScene(name, size);
-  } else {
-    LoadOptions lo;
-    if (spec.sphere_segments > 0) lo.sphere_segments = spec.sphere_segments;
-    p.scene = LoadScene(spec.scene, lo);
+    return GenerateScene(name, size);
   }
-  p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  p.tree = BuildKdTree(p.scene, spec.build);
+  LoadOptions lo;
+  if (spec.sphere_segments > 0) lo.sphere_segments = spec.sphere_segments;
+  return LoadScene(spec.scene, lo);
+}
+
+}  // namespace
+
+PreparedScene PrepareScene(const SceneSpec& spec) {
+  const auto start = std::chrono::steady_clock::now();
+  Scene scene = LoadOrGenerate(spec);
+  const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  PreparedScene p = PrepareScene(std::move(scene), spec.build);
+  p.load_seconds = load_seconds;
+  return p;
+}
+
+PreparedScene PrepareScene(Scene scene, const BuildOptions& build) {
+  PreparedScene p;
+  p.scene = std::move(scene);
+  p.tree = BuildKdTree(p.scene, build);
   p.image = BuildMemoryImage(p.scene, p.tree);
   return p;
 }

@@ -30,6 +30,8 @@ struct PreparedScene {
 
 // Loads (or generates) the scene, builds the tree and the memory image.
 PreparedScene PrepareScene(const SceneSpec& spec);
+// The tree and the memory image of a scene already in memory.
+PreparedScene PrepareScene(Scene scene, const BuildOptions& build);
 
 nlohmann::json TreeStatsJson(const TreeStats& s);
 void PrintTreeStats(const PreparedScene& p);

@@ -17,5 +17,6 @@ Runner AddGenCommand(CLI::App& app);
 Runner AddRaysCommand(CLI::App& app);
 Runner AddSimCommand(CLI::App& app);
 Runner AddCompareCommand(CLI::App& app);
+Runner AddExtremesCommand(CLI::App& app);
 
 }  // namespace kdrt::cli

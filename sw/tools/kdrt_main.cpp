@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
       kdrt::cli::AddRaysCommand(app),
       kdrt::cli::AddSimCommand(app),
       kdrt::cli::AddCompareCommand(app),
+      kdrt::cli::AddExtremesCommand(app),
   };
   try {
     try {

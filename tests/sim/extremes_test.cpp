@@ -1,0 +1,47 @@
+// `kdrt extremes --reduced --sim`: the numerics suite through the reference
+// tracer and the RTL core. The core must return the reference's records bit
+// for bit on every case in every preset; fp32 must leave no hole except
+// where the current world-space datapath is known to fail (listed below).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/common/run_kdrt.h"
+
+namespace kdrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Products of the watertight test under- or overflow fp32 at these scales
+// until coordinates are scene-relative (issue "Numerics at the extremes").
+const std::set<std::string> kKnownFp32Failures = {"scale 1e-30", "scale 1e30"};
+
+TEST(Extremes, SimMatchesRenderAndFp32HasNoHoles) {
+  const fs::path json = fs::temp_directory_path() / ("kdrt_extremes_" + std::to_string(getpid()) + ".json");
+  const testing::RunResult r = testing::RunKdrt("extremes --reduced --sim -q --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream f(json);
+  const nlohmann::json j = nlohmann::json::parse(f);
+  fs::remove(json);
+  ASSERT_GE(j["cases"].size(), 20u);
+  for (const nlohmann::json& c : j["cases"]) {
+    const std::string name = c["case"];
+    EXPECT_GT(c["rays"].get<int>(), 0) << name;
+    for (const auto& [format, cell] : c["formats"].items()) {
+      EXPECT_EQ(cell["sim_mismatch"].get<int>(), 0) << name << " " << format << ": kdrt sim differs from render";
+    }
+    if (!kKnownFp32Failures.count(name)) {
+      EXPECT_EQ(c["formats"]["fp32"]["holes"].get<int>(), 0) << name;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace kdrt
