@@ -192,7 +192,7 @@ std::vector<ExtremeCase> MakeExtremeCases(bool reduced) {
   // Many triangles through one point (the apex of a pyramid-like cone): the
   // kd-tree cannot separate them, so it reaches its maximal depth there.
   {
-    const int n = reduced ? 300 : 2000;
+    const int n = reduced ? 300 : 600;
     ExtremeCase c = Case(std::to_string(n) + " triangles through one point", "one-point", ClosedCone(n, 1.0, 1.0));
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
