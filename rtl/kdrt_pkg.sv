@@ -1,10 +1,14 @@
 // Constants of the kdrt memory image, version 1: a mirror of
 // sw/common/image_format.h (the C++ header is the source of truth, and
 // docs/memory-image.md its prose). Every value is little-endian in memory;
-// offsets are in bytes.
+// offsets are in bytes. Also the types shared by the core's units: the
+// traversal action and the performance event struct.
 `default_nettype none
 
 package kdrt_pkg;
+
+  // A unit uses only some of these.
+  /* verilator lint_off UNUSEDPARAM */
 
   localparam int unsigned ImgVersion      = 1;
   localparam int unsigned HeaderBytes     = 128;
@@ -48,6 +52,40 @@ package kdrt_pkg;
   localparam int unsigned TriId  = 36;
   // The vertex words the intersection unit reads: bytes [0, 36) of a record.
   localparam int unsigned TriVertexBits = 288;
+
+  // The traversal step's decision (sw/trace/traversal.h TraversalAction):
+  // go to the first (near) child only, the second (far) child only, or push
+  // the far child and go to the near one.
+  typedef enum logic [1:0] {
+    TravFirst  = 2'd0,
+    TravSecond = 2'd1,
+    TravPush   = 2'd2
+  } trav_action_e;
+
+  // rt_core's perf_o: one bit per event in this cycle, MSB first (bit 15 ..
+  // bit 0); the harness counts them (sim/sim_report.cpp). One field per line,
+  // each with a comment saying what it counts: a C++ header is generated from
+  // this text.
+  typedef struct packed {
+    logic trav_leaf;           // a node response was a leaf
+    logic overflow;            // a traversal stack overflowed (the ray's record is invalid)
+    logic ray_out;             // a hit record was delivered (hit_valid_o and hit_ready_i)
+    logic ray_in;              // a ray was accepted (ray_valid_i and ray_ready_o)
+    logic stall_backpressure;  // a hit waits on hit_ready_i, or the traversal or intersection unit stalls its input
+    logic stall_stack;         // a thread waits for the leaf-exit (stack) port
+    logic stall_mem;           // rays in flight, no unit made progress, and a cache waits for memory
+    logic tri_miss;            // a triangle cache miss
+    logic tri_hit;             // a triangle cache hit
+    logic list_miss;           // a list cache miss
+    logic list_hit;            // a list cache hit
+    logic node_miss;           // a node cache miss
+    logic node_hit;            // a node cache hit
+    logic isect_busy;          // the intersection unit took a test
+    logic list_busy;           // the list unit issued a list entry or triangle fetch
+    logic trav_busy;           // the traversal unit took a node
+  } perf_t;
+
+  /* verilator lint_on UNUSEDPARAM */
 
 endpackage
 
