@@ -19,7 +19,8 @@ UNITS=(fp_add fp_mul fp_div fp_cmp fp_from_f32 fp_to_f32 fp_nudge rt_trav_unit r
        rt_ray_setup rt_isect_unit rt_hit_out)
 # Units without E and M: one row each, default parameters.
 PLAIN_UNITS=(rt_fifo rt_list_unit rt_thread_stack rt_mem_system)
-FORMATS=(fp32:8:23 fp24:7:16 bf16:8:7 fp16:5:10)
+# The preset formats: the one list in cmake/presets.cmake.
+read -r -a FORMATS <<< "$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname "$0")/../cmake/presets.cmake")"
 
 run_one() {  # run_one <unit> <name> <E> <M>: writes $WORK/<unit>_<name>.{log,row}; E "-": defaults
   local unit="$1" name="$2" e="$3" m="$4"
