@@ -20,6 +20,7 @@
 namespace kdrt::fp {
 
 std::string Format::Name() const {
+  if (IsFp64()) return "fp64";
 #define KDRT_PRESET_NAME(name, pe, pm) \
   if (e == pe && m == pm) return #name;
   KDRT_PRESET_LIST(KDRT_PRESET_NAME)
@@ -28,9 +29,12 @@ std::string Format::Name() const {
 }
 
 Format MakeFormat(int e, int m) {
+  if (Format{e, m}.IsFp64()) {
+    throw InputError("number format fp64 has no soft-float model: it is computed natively in double");
+  }
   if (e < 2 || e > 8 || m < 1 || m > 23) {
     throw InputError("number format e" + std::to_string(e) + "m" + std::to_string(m) +
-                     ": need 2 <= exponent bits <= 8 and 1 <= mantissa bits <= 23");
+                     ": need 2 <= exponent bits <= 8 and 1 <= mantissa bits <= 23 (or fp64)");
   }
   return Format{e, m};
 }
@@ -39,12 +43,15 @@ Format ParseFormat(const std::string& name) {
   for (const Format& f : Presets()) {
     if (name == f.Name()) return f;
   }
+  if (name == "fp64") return kFp64;
   int e = 0, m = 0, consumed = 0;
   if (std::sscanf(name.c_str(), "e%dm%d%n", &e, &m, &consumed) == 2 &&
       consumed == static_cast<int>(name.size()) && name.find_first_of("+- ") == std::string::npos) {
+    if (Format{e, m}.IsFp64()) return kFp64;
     return MakeFormat(e, m);
   }
-  throw InputError("unknown number format '" + name + "': expected " + PresetNames() + " or eXmY (e.g. e4m3)");
+  throw InputError("unknown number format '" + name + "': expected " + PresetNames() +
+                   ", eXmY (e.g. e4m3) or fp64");
 }
 
 std::string PresetNames() {

@@ -33,9 +33,17 @@
 
 namespace kdrt::fp {
 
+// A soft format has 2 <= e <= 8 and 1 <= m <= 23; everything below (the
+// encoding helpers, the free arithmetic functions, SoftArith) holds only for
+// those. The one exception is kFp64 (e = 11, m = 52): IEEE binary64, computed
+// natively by NativeF64Arith as the accuracy reference; it has no encoding in
+// a uint32_t, no soft-float model and no RTL. Code that takes a Format from
+// the user must either route fp64 to NativeF64Arith or refuse it (IsFp64).
 struct Format {
-  int e = 8;   // exponent bits, 2..8
-  int m = 23;  // mantissa bits (without the hidden bit), 1..23
+  int e = 8;   // exponent bits, 2..8 (11 for fp64)
+  int m = 23;  // mantissa bits (without the hidden bit), 1..23 (52 for fp64)
+
+  bool IsFp64() const { return e == 11 && m == 52; }
 
   int Width() const { return 1 + e + m; }
   int Bias() const { return (1 << (e - 1)) - 1; }
@@ -61,12 +69,15 @@ inline constexpr Format kFp32{8, 23};
 inline constexpr Format kFp24{7, 16};
 inline constexpr Format kBf16{8, 7};
 inline constexpr Format kFp16{5, 10};
+// Not a preset (no RTL model, not in Presets()): the double-precision truth.
+inline constexpr Format kFp64{11, 52};
 
-// Throws kdrt::InputError unless 2 <= e <= 8 and 1 <= m <= 23. The arithmetic
-// functions below do not check (they are the hot path): build every Format
-// through MakeFormat or ParseFormat.
+// Throws kdrt::InputError unless 2 <= e <= 8 and 1 <= m <= 23 (so also for
+// fp64: it is not a soft format). The arithmetic functions below do not check
+// (they are the hot path): build every soft Format through MakeFormat.
 Format MakeFormat(int e, int m);
-// "fp32", "fp24", "bf16", "fp16" or "eXmY" (e.g. "e4m3"); throws InputError.
+// "fp32", "fp24", "bf16", "fp16", "eXmY" (e.g. "e4m3"), or "fp64" (kFp64,
+// also "e11m52"); throws InputError. Callers get kFp64 only from here.
 Format ParseFormat(const std::string& name);
 std::vector<Format> Presets();
 // "fp32, fp24, bf16, fp16": the preset names, for help texts and messages.
@@ -185,7 +196,73 @@ struct NativeF32Arith {
   static T One() { return 1.0f; }
 };
 
-// Any (E, M) format, computed in software on the encodings.
+// IEEE binary64, the accuracy reference (`kdrt render --format fp64`): the
+// same traversal and tests in native double. The caller MUST hold
+// ScopedIeeeDefault (fp/ftz.h): gradual underflow and round to nearest, so
+// the results do not depend on the thread's MXCSR. Load widens fp32 exactly
+// (a subnormal fp32 too: it is a normal double); Store rounds once to the
+// fp32 hit record. The traversal slack is kTraversalSlackUlps encodings of
+// double, the same rule as the other formats (NudgeUp/NudgeDown below).
+struct NativeF64Arith {
+  using T = double;
+
+  static uint64_t Bits(T x) {
+    uint64_t u;
+    std::memcpy(&u, &x, sizeof u);
+    return u;
+  }
+  static T FromBits(uint64_t u) {
+    T x;
+    std::memcpy(&x, &u, sizeof x);
+    return x;
+  }
+
+  static T Load(float fp32_from_memory) { return static_cast<T>(fp32_from_memory); }
+  static float Store(T x) { return static_cast<float>(x); }
+  static T Add(T a, T b) { return a + b; }
+  static T Sub(T a, T b) { return a - b; }
+  static T Mul(T a, T b) { return a * b; }
+  static T Div(T a, T b) { return a / b; }
+  static T Min(T a, T b) {
+    if (a < b) return a;
+    if (b < a) return b;
+    if (a == b) return FromBits(Bits(a) | Bits(b));  // min(-0, +0) = -0
+    return a + b;                                    // a NaN
+  }
+  static T Max(T a, T b) {
+    if (a > b) return a;
+    if (b > a) return b;
+    if (a == b) return FromBits(Bits(a) & Bits(b));  // max(-0, +0) = +0
+    return a + b;
+  }
+  static T Neg(T x) { return -x; }
+  static T Abs(T x) { return std::fabs(x); }
+  // As fp::NudgeUp/NudgeDown on double's encoding: +0 below the smallest
+  // normal, +inf above the largest finite value.
+  static T NudgeUp(T x, uint32_t k) {
+    constexpr uint64_t kInfBits = 0x7FF0000000000000ull;
+    if (!(x > 0.0) || x == std::numeric_limits<T>::infinity()) return x;
+    const uint64_t u = Bits(x) + k;
+    return u >= kInfBits ? std::numeric_limits<T>::infinity() : FromBits(u);
+  }
+  static T NudgeDown(T x, uint32_t k) {
+    constexpr uint64_t kMinNormalBits = 0x0010000000000000ull;
+    if (!(x > 0.0) || x == std::numeric_limits<T>::infinity()) return x;
+    const uint64_t u = Bits(x);
+    return u < kMinNormalBits + k ? 0.0 : FromBits(u - k);
+  }
+  static bool Lt(T a, T b) { return a < b; }
+  static bool Le(T a, T b) { return a <= b; }
+  static bool Eq(T a, T b) { return a == b; }
+  static bool IsNeg(T x) { return std::signbit(x); }
+  static bool IsZero(T x) { return x == 0.0; }
+  static T Zero() { return 0.0; }
+  static T Inf() { return std::numeric_limits<T>::infinity(); }
+  static T One() { return 1.0; }
+};
+
+// Any soft (E, M) format, computed in software on the encodings. Throws
+// InputError for fp64 (and anything else MakeFormat refuses).
 class SoftArith {
  public:
   using T = uint32_t;

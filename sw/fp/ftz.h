@@ -36,4 +36,26 @@ class ScopedFtzDaz {
 #endif
 };
 
+// The opposite guard for NativeF64Arith: IEEE default behaviour (gradual
+// underflow, FTZ and DAZ off, round to nearest) for the calling thread, so
+// the double-precision reference does not inherit a caller's FTZ/DAZ.
+class ScopedIeeeDefault {
+ public:
+#if KDRT_HAVE_MXCSR
+  ScopedIeeeDefault() : saved_(_mm_getcsr()) {
+    _mm_setcsr(saved_ & ~(ScopedFtzDaz::kRoundingMask | ScopedFtzDaz::kFtz | ScopedFtzDaz::kDaz));
+  }
+  ~ScopedIeeeDefault() { _mm_setcsr(saved_); }
+#else
+  ScopedIeeeDefault() = default;
+#endif
+  ScopedIeeeDefault(const ScopedIeeeDefault&) = delete;
+  ScopedIeeeDefault& operator=(const ScopedIeeeDefault&) = delete;
+
+ private:
+#if KDRT_HAVE_MXCSR
+  unsigned saved_;
+#endif
+};
+
 }  // namespace kdrt::fp

@@ -1,4 +1,5 @@
-// kdrt info: tree statistics and memory image size of a scene.
+// kdrt info: tree statistics, memory image size and the precision the scene
+// requires (trace/precision.h) for its rays: the camera's, or --rays.
 #include <cstdio>
 #include <fstream>
 
@@ -9,6 +10,7 @@
 #include "setup/trace_outputs.h"
 #include "tools/scene_options.h"
 #include "trace/output_file.h"
+#include "trace/precision.h"
 
 namespace kdrt::cli {
 namespace {
@@ -17,10 +19,27 @@ struct InfoArgs {
   SceneSpec scene;
   std::string json;
   std::string image_out;
+  std::string rays;
+  int threads = 0;
 };
+
+// "exponent bits set by A, mantissa bits by B": the criteria at the minimum.
+std::string LimitingCriteria(const PrecisionRequirement& req) {
+  std::string e, m;
+  for (const PrecisionCriterion& c : req.criteria) {
+    const int need = c.exponent ? req.min_exponent_bits : req.min_mantissa_bits;
+    if (c.MinBits() != need) continue;
+    std::string& list = c.exponent ? e : m;
+    list += (list.empty() ? "" : ", ") + c.name;
+  }
+  return "exponent bits set by " + (e.empty() ? std::string("nothing") : e) + ", mantissa bits by " +
+         (m.empty() ? std::string("nothing") : m);
+}
 
 int Run(const InfoArgs& args) {
   const PreparedScene p = PrepareScene(args.scene);
+  const RaySet ray_set = MakeRays(p.scene, args.rays, "", "");
+  const PrecisionRequirement req = AnalyzePrecision(ImageView(p.image), ray_set.rays, args.threads);
   OutputSet outputs;
   if (!args.json.empty()) {
     nlohmann::json j = {{"command", "info"},
@@ -28,7 +47,8 @@ int Run(const InfoArgs& args) {
                         {"triangles", p.scene.triangles.size()},
                         {"accel", SplitMethodName(args.scene.build.method)},
                         {"tree", TreeStatsJson(p.tree.stats)},
-                        {"image_bytes", p.image.size()}};
+                        {"image_bytes", p.image.size()},
+                        {"precision", req.Json()}};
     AddJsonOutput(outputs, args.json, j);
   }
   if (!args.image_out.empty()) {
@@ -40,6 +60,10 @@ int Run(const InfoArgs& args) {
   }
   outputs.Commit();
   PrintTreeStats(p);
+  std::printf("minimal format  %s\n", req.MinimalFormat().c_str());
+  std::printf("precision      for %llu %s (%llu hits in fp64); %s\n", static_cast<unsigned long long>(req.rays),
+              args.rays.empty() ? "camera rays" : "rays", static_cast<unsigned long long>(req.hit_tests),
+              LimitingCriteria(req).c_str());
   return 0;
 }
 
@@ -51,6 +75,9 @@ Runner AddInfoCommand(CLI::App& app) {
   AddSceneOptions(*cmd, args->scene);
   cmd->add_option("--json", args->json, "Machine-readable statistics");
   cmd->add_option("--image", args->image_out, "Write the memory image (docs/memory-image.md) to this file");
+  cmd->add_option("--rays", args->rays,
+                  "Derive the precision requirement for this ray file (KDRTRAYS) instead of the camera rays");
+  cmd->add_option("--threads", args->threads, "Threads of the precision analysis (0: all cores)");
   return [cmd, args]() { return cmd->parsed() ? Run(*args) : -1; };
 }
 

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "scene/camera.h"
 #include "tools/commands.h"
+#include "setup/precision_check.h"
 #include "setup/prepared_scene.h"
 #include "setup/ray_set.h"
 #include "setup/trace_outputs.h"
@@ -32,6 +33,7 @@ struct RenderArgs {
   std::string camera;
   int threads = 0;
   bool quiet = false;
+  bool strict = false;
 };
 
 int Run(const RenderArgs& args) {
@@ -47,6 +49,7 @@ int Run(const RenderArgs& args) {
   to.isect = ParseIsectMethod(args.isect);
   to.threads = args.threads;
   to.progress = !args.quiet && isatty(STDERR_FILENO) && rays.size() >= 1000000;
+  const PrecisionCheck check = CheckPrecision(image, rays, to.format, args.strict, args.threads);
   TraceStats ts;
   const std::vector<Hit> hits = TraceRays(image, rays, to, &ts);
 
@@ -70,6 +73,8 @@ int Run(const RenderArgs& args) {
       {"per_ray",
        {{"nodes", ts.totals.nodes / n}, {"leaves", ts.totals.leaves / n}, {"tri_tests", ts.totals.tri_tests / n}}},
       {"totals", {{"nodes", ts.totals.nodes}, {"leaves", ts.totals.leaves}, {"tri_tests", ts.totals.tri_tests}}},
+      {"precision", check.requirement.Json()},
+      {"warnings", check.warnings},
   };
 
   OutputSet outputs;
@@ -79,7 +84,8 @@ int Run(const RenderArgs& args) {
 
   if (!args.quiet) {
     PrintTreeStats(p);
-    std::printf("format         %s, %s test\n", args.format.c_str(), IsectMethodName(to.isect));
+    std::printf("format         %s, %s test (minimal format %s)\n", args.format.c_str(), IsectMethodName(to.isect),
+                check.requirement.MinimalFormat().c_str());
     std::printf("rays           %llu (%dx%d), %llu hits (%.1f %%)\n", static_cast<unsigned long long>(ts.rays), width,
                 height, static_cast<unsigned long long>(ts.hits), 100.0 * ts.hits / n);
     std::printf("per ray        %.2f nodes, %.2f leaves, %.2f triangle tests\n", ts.totals.nodes / n,
@@ -104,8 +110,10 @@ Runner AddRenderCommand(CLI::App& app) {
   cmd->add_option("--json", args->json, "Machine-readable statistics");
   cmd->add_option("--isect", args->isect, "Ray/triangle test: watertight or moller")->capture_default_str();
   cmd->add_option("--format", args->format, "Number format of traversal and intersection: " + fp::PresetNames() +
-                                                            " or eXmY")
+                                                            ", eXmY, or fp64 (native double, the accuracy reference)")
       ->capture_default_str();
+  cmd->add_flag("--strict", args->strict,
+                "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");
   cmd->add_option("--rays", args->rays, "Trace this ray file (KDRTRAYS) instead of the camera");
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
   cmd->add_option("--threads", args->threads, "Threads (0: all cores; results do not depend on it)");

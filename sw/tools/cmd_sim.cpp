@@ -14,6 +14,7 @@
 
 #include "common/error.h"
 #include "fp/format.h"
+#include "setup/precision_check.h"
 #include "setup/prepared_scene.h"
 #include "setup/ray_set.h"
 #include "setup/trace_outputs.h"
@@ -38,12 +39,17 @@ struct SimArgs {
   sim::RunOptions run;
   sim::ConfigOverrides overrides;
   bool quiet = false;
+  bool strict = false;
   bool which_model = false;  // print the model choice and stop
 };
 
 int RunSim(SimArgs args) {
   sim::CheckRunOptions(args.run);
   const fp::Format format = fp::ParseFormat(args.format);
+  if (format.IsFp64()) {
+    throw InputError("--format fp64: no RTL model computes in fp64 (it is the software reference: kdrt render "
+                     "--format fp64)");
+  }
   const PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);
   const sim::SceneRequirements req = sim::DeriveRequirements(image);
@@ -63,6 +69,8 @@ int RunSim(SimArgs args) {
     throw InputError("--trace-ray " + std::to_string(args.run.trace_ray) + ": there are only " +
                      std::to_string(ray_set.rays.size()) + " rays");
   }
+  // Before a model is built or run: --strict refuses here, with nothing written.
+  const PrecisionCheck check = CheckPrecision(image, ray_set.rays, format, args.strict, 0);
   if (!loc.built) sim::BuildModel(choice, loc);
 
   // The waveform is written by the model; it gets a temporary name and is
@@ -84,6 +92,8 @@ int RunSim(SimArgs args) {
   sim::AddScene({p.scene.source, ray_set.width, ray_set.height, p.scene.triangles.size(), p.tree.stats.nodes,
                  p.tree.stats.max_depth},
                 &report);
+  report["precision"] = check.requirement.Json();
+  report["warnings"] = check.warnings;
   const std::string out = args.out.empty() ? DefaultImageName(args.scene.scene, !args.rays.empty()) : args.out;
   AddTraceOutputs(outputs, p.scene, ray_set, run.hits, out, args.hits, args.json, report);
   outputs.Commit();
@@ -116,6 +126,8 @@ Runner AddSimCommand(CLI::App& app) {
   sim::AddRunOptions(*cmd, args->run);
   sim::AddParamOptions(*cmd, args->overrides);
   cmd->add_flag("-q,--quiet", args->quiet, "No report on stdout");
+  cmd->add_flag("--strict", args->strict,
+                "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");
   cmd->add_flag("--which-model", args->which_model,
                 "Print the model the scene needs and whether it is built; run nothing");
   return [cmd, args]() { return cmd->parsed() ? RunSim(*args) : -1; };

@@ -24,12 +24,18 @@ namespace {
 
 bool IsFp32(const fp::Format& f) { return f.e == 8 && f.m == 23; }
 
-// Runs fn(arith) with the arithmetic policy for the format.
+// Runs fn(arith) with the arithmetic policy for the format: native float for
+// fp32, native double for fp64 (the reference), the soft-float model for the
+// rest (SoftArith refuses anything that is not a soft format).
 template <class Fn>
 auto WithArith(const fp::Format& format, Fn&& fn) {
   if (IsFp32(format)) {
     fp::ScopedFtzDaz ftz;
     return fn(fp::NativeF32Arith{});
+  }
+  if (format.IsFp64()) {
+    fp::ScopedIeeeDefault ieee;
+    return fn(fp::NativeF64Arith{});
   }
   return fn(fp::SoftArith(format));
 }

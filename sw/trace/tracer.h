@@ -1,6 +1,7 @@
 // Tracing batches of rays through a memory image in any number format.
-// fp32 runs on native floats (FTZ/DAZ set for the duration), every other
-// format on the bit-accurate soft-float model; both share one template.
+// fp32 runs on native floats (FTZ/DAZ set for the duration), fp64 (the
+// accuracy reference) on native doubles with IEEE gradual underflow, every
+// other format on the bit-accurate soft-float model; all share one template.
 #pragma once
 
 #include <cstdint>

@@ -19,13 +19,32 @@ TEST(FpFormat, ParsesNamesAndRejectsBadOnes) {
   EXPECT_EQ(ParseFormat("e8m23"), kFp32);
   EXPECT_EQ(ParseFormat("e4m3").Name(), "e4m3");
   EXPECT_EQ(kBf16.Name(), "bf16");
-  for (const char* bad : {"", "fp64", "e9m3", "e1m3", "e4m0", "e4m24", "e4m3x", "e4", "m3",
+  for (const char* bad : {"", "fp63", "FP64", "e11m51", "e9m3", "e1m3", "e4m0", "e4m24", "e4m3x", "e4", "m3",
                           "e-4m3", "e 4m3", "e4m+3"}) {
     EXPECT_THROW(ParseFormat(bad), InputError) << bad;
   }
   EXPECT_THROW(MakeFormat(8, 24), InputError);
   EXPECT_THROW(SoftArith(Format{0, 0}), InputError);
   EXPECT_EQ(Presets().size(), 4u);
+}
+
+// fp64 is a name for the native double reference, not a soft format: it
+// parses, but nothing that computes on encodings accepts it.
+TEST(FpFormat, Fp64IsParsedButNotASoftFormat) {
+  EXPECT_EQ(ParseFormat("fp64"), kFp64);
+  EXPECT_EQ(ParseFormat("e11m52"), kFp64);
+  EXPECT_TRUE(ParseFormat("fp64").IsFp64());
+  EXPECT_FALSE(kFp32.IsFp64());
+  EXPECT_EQ(kFp64.Name(), "fp64");
+  EXPECT_THROW(MakeFormat(11, 52), InputError);
+  EXPECT_THROW(SoftArith{kFp64}, InputError);
+  for (const Format& f : Presets()) EXPECT_FALSE(f.IsFp64());
+  try {
+    ParseFormat("fp99");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("fp64"), std::string::npos) << e.what();
+  }
 }
 
 TEST(FpFormat, Helpers) {

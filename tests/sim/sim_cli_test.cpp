@@ -24,7 +24,10 @@
 #include <nlohmann/json.hpp>
 
 #include "fp/format.h"
+#include "scene/nff_writer.h"
+#include "tests/common/moved_sphere.h"
 #include "trace/images.h"
+#include "trace/rays_file.h"
 
 namespace kdrt {
 namespace {
@@ -116,6 +119,8 @@ TEST_P(SimMatchesRender, HitBuffersAreIdentical) {
   EXPECT_EQ(j["perf_counts"]["ray_in"].get<uint64_t>(), rays);
   EXPECT_EQ(j["perf_counts"]["ray_out"].get<uint64_t>(), rays);
   EXPECT_EQ(j["overflows"].get<uint64_t>(), 0u);
+  EXPECT_TRUE(j["warnings"].is_array());
+  EXPECT_EQ(j["precision"]["rays"].get<uint64_t>(), rays);
   // The core cannot beat one node fetch or one test per cycle.
   EXPECT_GE(j["cycles_per_ray"].get<double>(), j["bound_cycles_per_ray"].get<double>());
 }
@@ -231,6 +236,42 @@ TEST_F(SimCli, SceneLargerThanTheMemoryIsRefused) {
   EXPECT_NE(a.exit_code, 0);
   EXPECT_NE(a.output.find("address width 12 is too small"), std::string::npos) << a.output;
   EXPECT_EQ(FileCount(), 0u);
+}
+
+TEST_F(SimCli, Fp64IsRefused) {
+  const RunResult s = RunKdrt("sim gen:balls:200 --res 8x8 --format fp64 -o " + Path("x.png") + " --json " +
+                              Path("x.json"));
+  EXPECT_EQ(s.exit_code, 1) << s.output;
+  EXPECT_NE(s.output.find("kdrt: error: "), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("no RTL model computes in fp64"), std::string::npos) << s.output;
+  EXPECT_EQ(FileCount(), 0u);
+}
+
+// The sphere of `kdrt rays` 1e5 from the origin (docs/precision.md): fp16
+// cannot hold it. The front end warns (stderr and JSON) and runs the model,
+// or with --strict refuses before building or running one.
+TEST_F(SimCli, FormatBelowTheRequirementWarnsOrWithStrictFails) {
+  const testing::MeshAndRays m = testing::MovedSphere(1e5, 1);
+  std::vector<Ray> some;  // every 64th: each walks the whole tree in fp16
+  for (size_t i = 0; i < m.rays.size(); i += 64) some.push_back(m.rays[i]);
+  WriteNff(m.scene, Path("far.nff"));
+  WriteRaysFile(Path("far.bin"), some);
+  const std::string base = "sim " + Path("far.nff") + " --rays " + Path("far.bin") + " --format fp16 -q";
+
+  RunResult s = RunKdrt(base + " --strict --hits " + Path("s.exr") + " --json " + Path("s.json"));
+  EXPECT_EQ(s.exit_code, 1) << s.output;
+  EXPECT_NE(s.output.find("kdrt: error: fp16 cannot represent this scene: "), std::string::npos) << s.output;
+  EXPECT_EQ(FileCount(), 2u);  // the inputs
+
+  s = RunKdrt(base + " --hits " + Path("w.exr") + " --json " + Path("w.json"));
+  ASSERT_EQ(s.exit_code, 0) << s.output;
+  const size_t at = s.output.find("kdrt: warning: fp16 cannot represent this scene: ");
+  ASSERT_NE(at, std::string::npos) << s.output;
+  const nlohmann::json j = ReadJson(Path("w.json"));
+  ASSERT_EQ(j["warnings"].size(), 1u);
+  EXPECT_EQ("kdrt: warning: " + j["warnings"][0].get<std::string>(),
+            s.output.substr(at, s.output.find('\n', at) - at));
+  EXPECT_EQ(j["hits"].get<uint64_t>(), 0u);  // the silent all-miss, now with a warning
 }
 
 TEST_F(SimCli, ModelChoiceFollowsTheScene) {

@@ -14,8 +14,12 @@
 #include <fstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "scene/nff_writer.h"
 #include "trace/images.h"
 #include "trace/rays_file.h"
+#include "trace_test_util.h"
 
 namespace kdrt {
 namespace {
@@ -188,6 +192,75 @@ TEST_F(Cli, InfoAndGen) {
   EXPECT_NE(r.output.find("memory image"), std::string::npos);
   EXPECT_NE(r.output.find("SAH cost"), std::string::npos);
   EXPECT_GT(fs::file_size(Path("t.img")), 128u);
+}
+
+TEST_F(Cli, Fp64RendersWithoutWarnings) {
+  const RunResult r = RunKdrt("render gen:balls:800 --res 32x32 --format fp64 -o " + Path("a.png") + " --json " +
+                              Path("a.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("format         fp64"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(Path("a.json")));
+  EXPECT_EQ(j["format"], "fp64");
+  EXPECT_GT(j["hits"].get<int>(), 0);
+  EXPECT_TRUE(j["warnings"].is_array());
+  EXPECT_TRUE(j["warnings"].empty());
+}
+
+// The sphere of `kdrt rays` 1e5 from the origin: fp16 overflows and its
+// vertices collapse. render warns on stderr and in the JSON, --strict refuses
+// with nothing written, fp32 has no warning. Every 16th ray: in fp16 each
+// ray of the overflowed scene walks the whole tree.
+TEST_F(Cli, FormatBelowTheRequirementWarnsOrWithStrictFails) {
+  const testing::MeshAndRays m = testing::MovedSphere(1e5, 1);
+  std::vector<Ray> some;
+  for (size_t i = 0; i < m.rays.size(); i += 16) some.push_back(m.rays[i]);
+  WriteNff(m.scene, Path("far.nff"));
+  WriteRaysFile(Path("far.bin"), some);
+  const std::string base = "render " + Path("far.nff") + " --rays " + Path("far.bin");
+
+  RunResult r = RunKdrt(base + " --format fp16 --hits " + Path("h.exr") + " --json " + Path("h.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string prefix = "kdrt: warning: fp16 cannot represent this scene: ";
+  const size_t at = r.output.find(prefix);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("vertices collapse onto another vertex", at), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(minimal format e6m21)", at), std::string::npos) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(Path("h.json")));
+  ASSERT_EQ(j["warnings"].size(), 1u);
+  const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+  EXPECT_EQ("kdrt: warning: " + j["warnings"][0].get<std::string>(), line);
+  EXPECT_EQ(j["precision"]["minimal_format"], "e6m21");
+
+  const size_t before = FileCount();
+  r = RunKdrt(base + " --format fp16 --strict --hits " + Path("s.exr") + " --json " + Path("s.json"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("kdrt: error: fp16 cannot represent this scene: "), std::string::npos) << r.output;
+  EXPECT_EQ(FileCount(), before);
+
+  r = RunKdrt(base + " --format fp32 --strict --json " + Path("f.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+  EXPECT_TRUE(nlohmann::json::parse(std::ifstream(Path("f.json")))["warnings"].empty());
+}
+
+TEST_F(Cli, InfoPrintsTheMinimalFormat) {
+  const testing::MeshAndRays m = testing::MovedSphere(1e5, 1);
+  WriteNff(m.scene, Path("far.nff"));
+  WriteRaysFile(Path("far.bin"), m.rays);
+  RunResult r = RunKdrt("info " + Path("far.nff") + " --rays " + Path("far.bin") + " --json " + Path("i.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("minimal format  e6m21\n"), std::string::npos) << r.output;
+  const nlohmann::json p = nlohmann::json::parse(std::ifstream(Path("i.json")))["precision"];
+  EXPECT_EQ(p["min_exponent_bits"], 6);
+  EXPECT_EQ(p["min_mantissa_bits"], 21);
+  EXPECT_EQ(p["rays"], m.rays.size());
+  EXPECT_EQ(p["criteria"]["vertex_collapse"]["failing"]["fp16"], p["criteria"]["vertex_collapse"]["checked"]);
+  // Without --rays: the camera's rays.
+  r = RunKdrt("info gen:room:500");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("minimal format  e"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("camera rays"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "trace/tracer.h"
 #include "trace/traversal.h"
 #include "trace/hit_compare.h"
+#include "tests/common/moved_sphere.h"
 
 namespace kdrt::testing {
 

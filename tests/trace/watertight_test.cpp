@@ -120,6 +120,15 @@ TEST(Watertight, TracerHasNoMissesInAnyPreset) {
   }
 }
 
+// The double-precision reference is watertight too: the same test in double.
+TEST(Watertight, TracerHasNoMissesInFp64) {
+  const Scene meshes[2] = {ClosedSphereMesh(16, 32), ClosedCubeMesh(8)};
+  for (const Scene& mesh : meshes) {
+    Prepared p(mesh);
+    EXPECT_EQ(CountMisses(p.view(), WatertightRays(mesh, 1), fp::kFp64), 0u) << mesh.source;
+  }
+}
+
 // The count can fail: with both x faces of the cube removed, the rays aimed
 // at points inside those faces go through the open ends.
 TEST(Watertight, OpenMeshHasMisses) {

@@ -1,0 +1,21 @@
+#include "setup/precision_check.h"
+
+#include <cstdio>
+
+#include "common/error.h"
+
+namespace kdrt {
+
+PrecisionCheck CheckPrecision(const ImageView& image, const std::vector<Ray>& rays, const fp::Format& format,
+                              bool strict, int threads) {
+  PrecisionCheck check;
+  check.requirement = AnalyzePrecision(image, rays, threads);
+  const std::string shortfall = check.requirement.Shortfall(format);
+  if (shortfall.empty()) return check;
+  if (strict) throw InputError(shortfall + " (--strict)");
+  std::fprintf(stderr, "kdrt: warning: %s\n", shortfall.c_str());
+  check.warnings.push_back(shortfall);
+  return check;
+}
+
+}  // namespace kdrt

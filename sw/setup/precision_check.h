@@ -1,0 +1,26 @@
+// The precision check of `kdrt render` and `kdrt sim`: the scene's
+// requirement (trace/precision.h) against the chosen format, before anything
+// is traced, so that a format too small for the scene never fails silently.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "common/ray.h"
+#include "fp/format.h"
+#include "trace/memory_image.h"
+#include "trace/precision.h"
+
+namespace kdrt {
+
+struct PrecisionCheck {
+  PrecisionRequirement requirement;
+  std::vector<std::string> warnings;  // the JSON "warnings" array (empty when the format suffices)
+};
+
+// Prints each warning on stderr as "kdrt: warning: <text>"; with `strict`
+// throws InputError(<text>) instead (the caller then writes nothing).
+PrecisionCheck CheckPrecision(const ImageView& image, const std::vector<Ray>& rays, const fp::Format& format,
+                              bool strict, int threads);
+
+}  // namespace kdrt

@@ -1,0 +1,199 @@
+// The precision requirement derived from the scene (trace/precision.h,
+// docs/precision.md): its building blocks, its monotonicity, and that it
+// tells the formats that fail on the extremes from those that work.
+#include <gtest/gtest.h>
+
+#include <cfloat>
+
+#include "trace/precision.h"
+#include "trace_test_util.h"
+
+namespace kdrt {
+namespace {
+
+using testing::CameraRays;
+using testing::MovedSphere;
+using testing::Prepared;
+
+size_t CountMisses(const ImageView& image, const std::vector<Ray>& rays, fp::Format f) {
+  TraceOptions o;
+  o.format = f;
+  o.threads = 2;
+  size_t misses = 0;
+  for (const Hit& h : TraceRays(image, rays, o)) misses += !h.IsHit();
+  return misses;
+}
+
+const PrecisionCriterion& Criterion(const PrecisionRequirement& req, const std::string& name) {
+  for (const PrecisionCriterion& c : req.criteria) {
+    if (c.name == name) return c;
+  }
+  throw std::runtime_error("no criterion " + name);
+}
+
+TEST(Precision, RoundMantissa) {
+  EXPECT_EQ(RoundMantissa(1.0f + 0x1p-23f, 23), 1.0f + 0x1p-23f);
+  EXPECT_EQ(RoundMantissa(1.0f + 0x1p-23f, 22), 1.0f);                  // tie to even (down)
+  EXPECT_EQ(RoundMantissa(1.0f + 3 * 0x1p-23f, 22), 1.0f + 0x1p-21f);  // tie to even (up)
+  EXPECT_EQ(RoundMantissa(1.3f, 1), 1.5f);
+  EXPECT_EQ(RoundMantissa(-1.3f, 1), -1.5f);
+  EXPECT_EQ(RoundMantissa(1.9f, 1), 2.0f);  // carry into the exponent
+  EXPECT_EQ(RoundMantissa(0x1.ep100f, 1), 0x1p101f);
+  EXPECT_EQ(RoundMantissa(0.0f, 4), 0.0f);
+  EXPECT_EQ(RoundMantissa(INFINITY, 4), INFINITY);
+}
+
+TEST(Precision, CollinearIsExact) {
+  const double a[3] = {0, 0, 0}, b[3] = {1, 2, 3}, c[3] = {2, 4, 6};
+  EXPECT_TRUE(Collinear(a, b, c));
+  EXPECT_TRUE(Collinear(a, a, c));  // coincident vertices
+  const double d[3] = {2, 4, 6 + 0x1p-50};
+  EXPECT_FALSE(Collinear(a, b, d));
+  // a*d and b*c round to the same double but differ by 2^-60: not collinear.
+  const double a_ = 1 + 0x1p-30, b_ = 1 + 0x1p-29;
+  const double o[3] = {0, 0, 0}, q[3] = {a_, b_, 0}, r[3] = {1, a_, 0};
+  ASSERT_EQ(a_ * a_, b_ * 1.0);  // the naive cross product says 0
+  EXPECT_FALSE(Collinear(o, q, r));
+}
+
+// Every count shrinks as bits are added, and the minimum is where all counts
+// reach zero: a format with at least the minimal bits gets no shortfall, one
+// with fewer exponent or mantissa bits does.
+void ExpectMonotone(const PrecisionRequirement& req) {
+  for (const PrecisionCriterion& c : req.criteria) {
+    for (int b = 1; b < 24; ++b) EXPECT_LE(c.Failing(b), c.Failing(b - 1)) << c.name;
+    EXPECT_EQ(c.Failing(c.MinBits()), 0u) << c.name;
+    if (c.MinBits() > 0) {
+      EXPECT_GT(c.Failing(c.MinBits() - 1), 0u) << c.name;
+    }
+  }
+  for (int e = 2; e <= 8; ++e) {
+    for (int m = 1; m <= 23; ++m) {
+      const bool meets = e >= req.min_exponent_bits && m >= req.min_mantissa_bits;
+      EXPECT_EQ(req.Shortfall(fp::Format{e, m}).empty(), meets) << "e" << e << "m" << m;
+    }
+  }
+  EXPECT_EQ(req.Shortfall(fp::kFp64), "");
+}
+
+TEST(Precision, UnitSphereNeedsFewBitsAndFp16Works) {
+  const testing::MeshAndRays m = MovedSphere(0, 1);
+  Prepared p(m.scene);
+  const PrecisionRequirement req = AnalyzePrecision(p.view(), m.rays, 2);
+  std::printf("unit sphere: %s\n", req.MinimalFormat().c_str());
+  EXPECT_LE(req.min_exponent_bits, 5);
+  EXPECT_LE(req.min_mantissa_bits, 7);
+  EXPECT_EQ(req.rays, m.rays.size());
+  EXPECT_EQ(req.hit_tests, m.rays.size());
+  for (const fp::Format& f : fp::Presets()) {
+    EXPECT_EQ(req.Shortfall(f), "") << f.Name();
+    EXPECT_EQ(CountMisses(p.view(), m.rays, f), 0u) << f.Name();
+  }
+  ExpectMonotone(req);
+}
+
+// 1e5 from the origin: fp16 overflows, and every vertex is within a rounding
+// step of its neighbours in fp16, bf16 and fp24 (the misses); fp32
+// holds it.
+TEST(Precision, OffsetSphereNeedsMoreThanFp16AndBf16) {
+  const testing::MeshAndRays m = MovedSphere(1e5, 1);
+  Prepared p(m.scene);
+  const PrecisionRequirement req = AnalyzePrecision(p.view(), m.rays, 2);
+  std::printf("sphere at 1e5: %s\n", req.MinimalFormat().c_str());
+  EXPECT_GT(req.min_exponent_bits, fp::kFp16.e);
+  EXPECT_GT(req.min_mantissa_bits, fp::kFp24.m);
+  EXPECT_EQ(req.Shortfall(fp::kFp32), "");
+  const std::string fp16 = req.Shortfall(fp::kFp16);
+  EXPECT_EQ(fp16.rfind("fp16 cannot represent this scene: ", 0), 0u) << fp16;
+  EXPECT_NE(fp16.find("960 of 960 triangles have a vertex coordinate that overflows"), std::string::npos) << fp16;
+  EXPECT_NE(fp16.find("vertices collapse onto another vertex"), std::string::npos) << fp16;
+  EXPECT_NE(req.Shortfall(fp::kBf16).find("vertices collapse"), std::string::npos);
+  EXPECT_EQ(Criterion(req, "vertex_collapse").Failing(fp::kBf16.m), Criterion(req, "vertex_collapse").checked);
+  // What the requirement says is what the tracer does (every 16th ray: in
+  // fp16 the overflowed scene sends each ray through the whole tree).
+  std::vector<Ray> some;
+  for (size_t i = 0; i < m.rays.size(); i += 16) some.push_back(m.rays[i]);
+  EXPECT_EQ(CountMisses(p.view(), some, fp::kFp16), some.size());
+  EXPECT_EQ(CountMisses(p.view(), m.rays, fp::kFp32), 0u);
+  ExpectMonotone(req);
+}
+
+// Scaled by 1e-15: twice a triangle's area (~1e-32) is below fp16's and
+// fp24's smallest normal; fp32 and bf16 (8 exponent bits) hold it.
+TEST(Precision, TinySphereNeedsMoreExponentBits) {
+  const testing::MeshAndRays m = MovedSphere(0, 1e-15);
+  Prepared p(m.scene);
+  const PrecisionRequirement req = AnalyzePrecision(p.view(), m.rays, 2);
+  std::printf("sphere scaled by 1e-15: %s\n", req.MinimalFormat().c_str());
+  EXPECT_GT(req.min_exponent_bits, fp::kFp24.e);
+  EXPECT_LE(req.min_exponent_bits, fp::kFp32.e);
+  EXPECT_LE(req.min_mantissa_bits, fp::kBf16.m);
+  EXPECT_EQ(Criterion(req, "triangle_underflow").Failing(fp::kFp24.e), m.scene.triangles.size());
+  EXPECT_NE(req.Shortfall(fp::kFp16).find("flushes to zero"), std::string::npos);
+  EXPECT_EQ(req.Shortfall(fp::kBf16), "");
+  EXPECT_EQ(CountMisses(p.view(), m.rays, fp::kFp24), m.rays.size());
+  EXPECT_EQ(CountMisses(p.view(), m.rays, fp::kBf16), 0u);
+  ExpectMonotone(req);
+}
+
+// Scaled by 1e15 with camera rays (unit directions, t ~ 1e15): T = det * t
+// (~1e44) overflows fp32. The tracer still reports hits, at t = +inf: the
+// failure the requirement makes visible.
+TEST(Precision, HugeSphereOverflowsFp32ForCameraRays) {
+  const testing::MeshAndRays m = MovedSphere(0, 1e15);
+  Prepared p(m.scene);
+  const std::vector<Ray> rays = CameraRays(p.scene, 32);
+  const PrecisionRequirement req = AnalyzePrecision(p.view(), rays, 2);
+  EXPECT_GT(req.min_exponent_bits, fp::kFp32.e);
+  EXPECT_GT(Criterion(req, "hit_overflow").Failing(fp::kFp32.e), 0u);
+  EXPECT_NE(req.Shortfall(fp::kFp32).find("hit tests overflow"), std::string::npos);
+  TraceOptions o;
+  o.threads = 2;
+  size_t inf_hits = 0;
+  for (const Hit& h : TraceRays(p.view(), rays, o)) inf_hits += h.IsHit() && std::isinf(h.t);
+  EXPECT_GT(inf_hits, 0u);
+}
+
+// No warning for fp32 on the generators, and the requirement is monotone.
+TEST(Precision, Fp32RepresentsTheGenerators) {
+  for (const char* name : {"room", "balls", "rings", "tetra", "tree"}) {
+    Prepared p(GenerateScene(name, 10000));
+    const PrecisionRequirement req = AnalyzePrecision(p.view(), CameraRays(p.scene, 64), 2);
+    std::printf("%-6s minimal format %s\n", name, req.MinimalFormat().c_str());
+    EXPECT_EQ(req.Shortfall(fp::kFp32), "") << name;
+    EXPECT_GT(req.hit_tests, 0u) << name;
+    ExpectMonotone(req);
+  }
+}
+
+// Without rays only the image criteria run.
+TEST(Precision, ImageAloneWithoutRays) {
+  Prepared p(GenerateScene("balls", 500));
+  const PrecisionRequirement req = AnalyzePrecision(p.view(), {}, 1);
+  EXPECT_EQ(req.rays, 0u);
+  for (const PrecisionCriterion& c : req.criteria) EXPECT_EQ(c.name.rfind("ray", 0) == 0, false) << c.name;
+  EXPECT_EQ(req.Json()["criteria"].count("hit_overflow"), 0u);
+  EXPECT_EQ(req.Json()["min_exponent_bits"], req.min_exponent_bits);
+}
+
+// Two vertices one fp32 ulp apart collapse below 23 bits; a split plane
+// never leaves its cell (rounding is monotone).
+TEST(Precision, NearlyCoincidentVerticesNeedAllBits) {
+  Scene s;
+  const float x = 1.0f, x_next = std::nextafter(1.0f, 2.0f);
+  s.triangles.push_back({{0, 0, 0}, {x, 0, 0}, {0, 1, 0}});
+  s.triangles.push_back({{0, 0, 1}, {x_next, 0, 1}, {0, 1, 1}});
+  s.triangles.push_back({{0, 0, 0}, {x_next, 0, 0}, {0, 1, 0}});
+  s.material.assign(3, 0);
+  s.colors.push_back({1, 1, 1});
+  Prepared p(s);
+  const PrecisionRequirement req = AnalyzePrecision(p.view(), {}, 1);
+  EXPECT_EQ(req.min_mantissa_bits, 23);
+  EXPECT_EQ(Criterion(req, "vertex_collapse").Failing(22), 2u);  // (1,0,0) and (x_next,0,0)
+  EXPECT_EQ(Criterion(req, "split_order").Failing(0), 0u);
+  EXPECT_NE(req.Shortfall(fp::kFp24).find("2 of 7 vertices collapse"), std::string::npos)
+      << req.Shortfall(fp::kFp24);
+}
+
+}  // namespace
+}  // namespace kdrt
