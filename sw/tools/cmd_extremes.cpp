@@ -1,7 +1,9 @@
 // kdrt extremes: the numerics suite. For every case (setup/extreme_cases.h)
 // and format: holes among the rays that must hit, disagreement with the
-// reference format (hit/miss, triangle), and, with --sim, the RTL core's
-// records against the reference tracer's in the same format.
+// reference format (fp64 by default: hit/miss, triangle), whether the
+// scene's precision requirement (trace/precision.h) warns about the format,
+// and, with --sim, the RTL core's records against the reference tracer's in
+// the same format.
 #include <unistd.h>
 
 #include <cstdio>
@@ -16,6 +18,7 @@
 #include "sim/model_runner.h"
 #include "tools/commands.h"
 #include "trace/hit_compare.h"
+#include "trace/precision.h"
 #include "trace/tracer.h"
 
 namespace kdrt::cli {
@@ -23,7 +26,7 @@ namespace {
 
 struct ExtremesArgs {
   std::string formats;  // default: the presets
-  std::string reference = "fp32";
+  std::string reference = "fp64";
   std::string cases;    // a regular expression over the case names
   std::string json;
   bool reduced = false;
@@ -45,6 +48,7 @@ struct Cell {
   uint64_t hitmiss = 0;        // hit/miss differs from the reference
   uint64_t prim = 0;           // both hit, other triangle
   int64_t sim_mismatch = -1;   // records that differ from render's (-1: not simulated)
+  std::string warning;         // the requirement's shortfall ("" when the format suffices)
 };
 
 Cell Measure(const ExtremeCase& c, const std::vector<Hit>& hits, const std::vector<Hit>& ref) {
@@ -70,7 +74,7 @@ int Run(const ExtremesArgs& args) {
 
   nlohmann::json rows = nlohmann::json::array();
   if (!args.quiet) {
-    std::printf("%-34s %7s", "case", "rays");
+    std::printf("%-34s %7s %7s", "case", "rays", "needs");
     for (const fp::Format& f : formats) std::printf("  %-22s", (f.Name() + " holes/hm/prim" + (args.sim ? "/sim" : "")).c_str());
     std::printf("\n");
   }
@@ -81,17 +85,19 @@ int Run(const ExtremesArgs& args) {
     TraceOptions to;
     to.format = reference;
     const std::vector<Hit> ref = TraceRays(image, c.rays, to);
+    const PrecisionRequirement req = AnalyzePrecision(image, c.rays);
     uint64_t must = 0;
     for (uint8_t m : c.must_hit) must += m;
     nlohmann::json row = {{"case", c.name},         {"group", c.group},       {"triangles", c.scene.triangles.size()},
                           {"rays", c.rays.size()},  {"must_hit", must},       {"tree_depth", p.tree.stats.max_depth},
                           {"refs_per_triangle", p.tree.stats.refs_per_triangle}, {"image_bytes", p.image.size()},
-                          {"reference", reference.Name()}};
-    if (!args.quiet) std::printf("%-34s %7zu", c.name.c_str(), c.rays.size());
+                          {"reference", reference.Name()}, {"minimal_format", req.MinimalFormat()}};
+    if (!args.quiet) std::printf("%-34s %7zu %7s", c.name.c_str(), c.rays.size(), req.MinimalFormat().c_str());
     for (const fp::Format& f : formats) {
       to.format = f;
       const std::vector<Hit> hits = TraceRays(image, c.rays, to);
       Cell cell = Measure(c, hits, ref);
+      cell.warning = req.Shortfall(f);
       if (args.sim) {
         sim::RunOptions run;
         const sim::ModelRun m = sim::Simulate(p.image, c.rays, f, run);
@@ -102,13 +108,17 @@ int Run(const ExtremesArgs& args) {
         cell.sim_mismatch = 0;
         for (size_t i = 0; i < hits.size(); ++i) cell.sim_mismatch += !SameBits(hits[i], m.hits[i]);
       }
-      nlohmann::json j = {{"holes", cell.holes}, {"hitmiss_mismatch", cell.hitmiss}, {"prim_mismatch", cell.prim}};
+      nlohmann::json j = {{"holes", cell.holes},
+                          {"hitmiss_mismatch", cell.hitmiss},
+                          {"prim_mismatch", cell.prim},
+                          {"warning", cell.warning}};
       if (cell.sim_mismatch >= 0) j["sim_mismatch"] = cell.sim_mismatch;
       row["formats"][f.Name()] = j;
       if (!args.quiet) {
         std::string text = std::to_string(cell.holes) + "/" + std::to_string(cell.hitmiss) + "/" +
                            std::to_string(cell.prim);
         if (cell.sim_mismatch >= 0) text += "/" + std::to_string(cell.sim_mismatch);
+        if (!cell.warning.empty()) text += " W";
         std::printf("  %-22s", text.c_str());
       }
     }
@@ -117,7 +127,9 @@ int Run(const ExtremesArgs& args) {
     rows.push_back(row);
   }
   if (!args.quiet) {
-    std::printf("holes: must-hit rays that missed; hm, prim: rays whose hit/miss or triangle differs from %s%s\n",
+    std::printf("holes: must-hit rays that missed; hm, prim: rays whose hit/miss or triangle differs from %s%s;\n"
+                "W: the scene's precision requirement says the format cannot represent the case (the JSON has "
+                "the warning)\n",
                 reference.Name().c_str(), args.sim ? "; sim: RTL records that differ from render's" : "");
   }
   if (!args.json.empty()) {
