@@ -13,6 +13,7 @@ Scene GenerateBalls(int size);
 Scene GenerateRings(int size);
 Scene GenerateTetra(int size);
 Scene GenerateTree(int size);
+Scene GenerateGears(int size);
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kDefaultResolution = 512;

@@ -22,6 +22,8 @@ const GeneratorEntry kGenerators[] = {
      gen::GenerateRings},
     {"tetra", "recursive Sierpinski tetrahedron over a floor", gen::GenerateTetra},
     {"tree", "branching tree of tapered cylinders with leaves at the tips", gen::GenerateTree},
+    {"gears", "grid of meshing toothed gears, concave faces fanned into slivers, over a floor",
+     gen::GenerateGears},
 };
 
 const GeneratorEntry& Find(const std::string& name) {
