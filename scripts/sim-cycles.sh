@@ -10,7 +10,7 @@ res=${2:-64x64}
 presets=$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname "$0")/../cmake/presets.cmake")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for scene in gen:room:600 gen:balls:800 gen:rings:800 gen:tetra:1000 gen:tree:2000 gen:balls:10000; do
+for scene in gen:room:600 gen:balls:800 gen:rings:800 gen:tetra:1000 gen:tree:2000 gen:gears:1500 gen:balls:10000; do
   for p in $presets; do
     fmt=${p%%:*}
     "$kdrt" sim "$scene" --format "$fmt" --res "$res" -q -o "$tmp/img.png" --hits "$tmp/hits.exr" \

@@ -142,7 +142,9 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"gen:tetra:1000", "fp32"}, SceneCase{"gen:tetra:1000", "fp24"},
                       SceneCase{"gen:tetra:1000", "bf16"}, SceneCase{"gen:tetra:1000", "fp16"},
                       SceneCase{"gen:tree:2000", "fp32"}, SceneCase{"gen:tree:2000", "fp24"},
-                      SceneCase{"gen:tree:2000", "bf16"}, SceneCase{"gen:tree:2000", "fp16"}),
+                      SceneCase{"gen:tree:2000", "bf16"}, SceneCase{"gen:tree:2000", "fp16"},
+                      SceneCase{"gen:gears:1500", "fp32"}, SceneCase{"gen:gears:1500", "fp24"},
+                      SceneCase{"gen:gears:1500", "bf16"}, SceneCase{"gen:gears:1500", "fp16"}),
     CaseName);
 
 // Rays aimed at the vertices and edges of a closed mesh, through a ray file.

@@ -17,6 +17,10 @@ namespace {
 struct OracleCase {
   const char* generator;
   int size;
+  // Ties (same t, other triangle) allowed, in percent of the hits: gears'
+  // faces are concave polygons fanned into coplanar, overlapping slivers, so
+  // most rays that hit a face meet two or more triangles at one t there.
+  int tie_percent = 1;
 };
 
 class EmbreeOracle : public ::testing::TestWithParam<OracleCase> {};
@@ -56,13 +60,13 @@ TEST_P(EmbreeOracle, PrimaryRaysAgree) {
   EXPECT_EQ(t_disagree, 0u);
   // Ties happen only where a ray meets two triangles at one t (shared edges,
   // vertices, coplanar overlaps): a small fraction of the hits.
-  EXPECT_LE(ties, both_hit / 100 + 2);
+  EXPECT_LE(ties, both_hit * oc.tie_percent / 100 + 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(Generators, EmbreeOracle,
                          ::testing::Values(OracleCase{"room", 2000}, OracleCase{"balls", 5000},
                                            OracleCase{"rings", 5000}, OracleCase{"tetra", 4000},
-                                           OracleCase{"tree", 5000}),
+                                           OracleCase{"tree", 5000}, OracleCase{"gears", 5000, 10}),
                          [](const auto& info) { return std::string(info.param.generator); });
 
 }  // namespace
