@@ -1,4 +1,4 @@
-// Constants of the kdrt memory image, version 1: a mirror of
+// Constants of the kdrt memory image, version 2: a mirror of
 // sw/common/image_format.h (the C++ header is the source of truth, and
 // docs/memory-image.md its prose). Every value is little-endian in memory;
 // offsets are in bytes.
@@ -6,7 +6,7 @@
 
 package kdrt_pkg;
 
-  localparam int unsigned ImgVersion      = 1;
+  localparam int unsigned ImgVersion      = 2;
   localparam int unsigned HeaderBytes     = 128;
   localparam int unsigned SectionAlign    = 64;
   localparam int unsigned NodeBytes       = 8;
@@ -31,7 +31,9 @@ package kdrt_pkg;
   localparam int unsigned HdrMaxLeafPrims = 44;
   localparam int unsigned HdrBoundsMin    = 48;  // 3 x fp32: x, y, z
   localparam int unsigned HdrBoundsMax    = 60;
-  localparam int unsigned HdrReserved     = 72;  // 14 zero words
+  localparam int unsigned HdrFrameOrigin  = 72;  // 3 x fp32 (sw/trace/frame.h)
+  localparam int unsigned HdrFrameScale   = 84;  // int32: log2 of the frame's scale
+  localparam int unsigned HdrReserved     = 88;  // 10 zero words
 
   // Node word 1, bits [1:0]: split axis 0/1/2 or NodeLeaf; bits [31:2]: the
   // above child's index (inner node) or the triangle count (leaf).
