@@ -1,10 +1,14 @@
 // Constants of the kdrt memory image, version 2: a mirror of
 // sw/common/image_format.h (the C++ header is the source of truth, and
 // docs/memory-image.md its prose). Every value is little-endian in memory;
-// offsets are in bytes.
+// offsets are in bytes. Also the types shared by the core's units: the
+// traversal action and the performance event struct.
 `default_nettype none
 
 package kdrt_pkg;
+
+  // A unit uses only some of these.
+  /* verilator lint_off UNUSEDPARAM */
 
   localparam int unsigned ImgVersion      = 2;
   localparam int unsigned HeaderBytes     = 128;
@@ -51,35 +55,40 @@ package kdrt_pkg;
   // The vertex words the intersection unit reads: bytes [0, 36) of a record.
   localparam int unsigned TriVertexBits = 288;
 
-  // The traversal step's decision (sw/trace/traversal.h TraversalAction).
+  // The traversal step's decision (sw/trace/traversal.h TraversalAction):
+  // go to the first (near) child only, the second (far) child only, or push
+  // the far child and go to the near one.
   typedef enum logic [1:0] {
-    TravFirst  = 2'd0,  // only the first child's interval is non-empty: descend
-    TravSecond = 2'd1,  // only the second's: descend
-    TravPush   = 2'd2   // both: descend into the first, push the second
+    TravFirst  = 2'd0,
+    TravSecond = 2'd1,
+    TravPush   = 2'd2
   } trav_action_e;
 
-  // rt_core's perf_o: one bit per event, set in each cycle in which the event
-  // happens; the simulator counts the cycles per bit. MSB first. The C++ side
-  // (<build>/generated/sim/perf_layout.h) is generated from this struct by
-  // cmake/perf_layout.cmake, so names and bit positions are defined here only.
+  // rt_core's perf_o: one bit per event in this cycle, MSB first (bit 15 ..
+  // bit 0); the harness counts them (sim/sim_report.cpp). One field per line,
+  // each with a comment saying what it counts: cmake/perf_layout.cmake
+  // generates the C++ view (<build>/generated/sim/perf_layout.h) from this
+  // text, so names and bit positions are defined here only.
   typedef struct packed {
     logic trav_leaf;           // a node response was a leaf
-    logic overflow;            // a push found the thread's stack full
-    logic ray_out;             // a hit record left the core
-    logic ray_in;              // a ray entered the core
-    logic stall_backpressure;  // a unit's output could not be taken
-    logic stall_stack;         // a thread waited for the exit port (stack pop)
-    logic stall_mem;           // busy, no unit progressed, memory outstanding
-    logic tri_miss;            // triangle cache miss
-    logic tri_hit;             // triangle cache hit
-    logic list_miss;           // list cache miss
-    logic list_hit;            // list cache hit
-    logic node_miss;           // node cache miss
-    logic node_hit;            // node cache hit
-    logic isect_busy;          // the intersection unit took a triangle
-    logic list_busy;           // the list unit issued or received an entry
+    logic overflow;            // a traversal stack overflowed (the ray's record is invalid)
+    logic ray_out;             // a hit record was delivered (hit_valid_o and hit_ready_i)
+    logic ray_in;              // a ray was accepted (ray_valid_i and ray_ready_o)
+    logic stall_backpressure;  // a hit waits on hit_ready_i, or the traversal or intersection unit stalls its input
+    logic stall_stack;         // a thread waits for the leaf-exit (stack) port
+    logic stall_mem;           // rays in flight, no unit made progress, and a cache waits for memory
+    logic tri_miss;            // a triangle cache miss
+    logic tri_hit;             // a triangle cache hit
+    logic list_miss;           // a list cache miss
+    logic list_hit;            // a list cache hit
+    logic node_miss;           // a node cache miss
+    logic node_hit;            // a node cache hit
+    logic isect_busy;          // the intersection unit took a test
+    logic list_busy;           // the list unit issued a list entry or triangle fetch
     logic trav_busy;           // the traversal unit took a node
   } perf_t;
+
+  /* verilator lint_on UNUSEDPARAM */
 
 endpackage
 

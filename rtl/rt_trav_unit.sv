@@ -39,7 +39,7 @@ module rt_trav_unit #(
   output logic                    out_valid_o,
   input  logic                    out_ready_i,
   output logic [TagWidth-1:0]     out_tag_o,
-  output logic [1:0]              out_action_o, // 0 first, 1 second, 2 push
+  output kdrt_pkg::trav_action_e  out_action_o,
   output logic [NodeIdxWidth-1:0] out_first_o,
   output logic [NodeIdxWidth-1:0] out_second_o,
   output logic [W-1:0]            out_ts_o,
@@ -139,7 +139,8 @@ module rt_trav_unit #(
   );
   assign out_first_o = bf3 ? below3 : above3;
   assign out_second_o = bf3 ? above3 : below3;
-  assign out_action_o = (t1_lt_ts || ts_le0) ? 2'd0 : (ts_lt_t0 ? 2'd1 : 2'd2);
+  assign out_action_o = (t1_lt_ts || ts_le0) ? kdrt_pkg::TravFirst
+                       : (ts_lt_t0 ? kdrt_pkg::TravSecond : kdrt_pkg::TravPush);
 
   // picorv32's stream rule on both sides.
   rt_stream_check #(.Width(SideW + 32), .Name("rt_trav_unit in")) u_in_check (

@@ -11,7 +11,8 @@ VERILATOR="${VERILATOR:-verilator}"
 # Files that every unit may use; passed before the unit itself.
 COMMON=("$RTL/kdrt_fp_pkg.sv" "$RTL/fp_round.sv")
 # name:E:M
-PRESETS=(fp32:8:23 fp24:7:16 bf16:8:7 fp16:5:10)
+# The preset formats: the one list in cmake/presets.cmake.
+read -r -a PRESETS <<< "$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname "$0")/../cmake/presets.cmake")"
 # The fp_* units must also hold at the edges of the accepted range.
 FP_FORMATS=("${PRESETS[@]}" e4m3:4:3 e2m1:2:1 e2m23:2:23)
 

@@ -7,8 +7,7 @@
 set -euo pipefail
 kdrt=${1:-build/bin/kdrt}
 res=${2:-64x64}
-presets=$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname "$0")/../cmake/presets.cmake" 2>/dev/null || true)
-[ -n "$presets" ] || presets="fp32:8:23 fp24:7:16 bf16:8:7 fp16:5:10"
+presets=$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname "$0")/../cmake/presets.cmake")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for scene in gen:room:600 gen:balls:800 gen:rings:800 gen:tetra:1000 gen:tree:2000 gen:balls:10000; do

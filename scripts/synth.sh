@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Generic Yosys synthesis of the (E, M) floating-point units for each preset:
+# Generic Yosys synthesis of the (E, M) floating-point units and the core's
+# units for each preset (units without E and M once, default parameters):
 # fails if any latch is inferred, prints a table (cells, flip-flops, logic
 # depth = longest path in gates between registers/ports from `ltp -noff`) and
 # writes it to docs/synth-table.md.
@@ -15,15 +16,20 @@ WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 
 UNITS=(fp_add fp_mul fp_div fp_cmp fp_from_f32 fp_to_f32 fp_nudge rt_trav_unit rt_clip_unit
-       rt_ray_setup rt_isect_unit)
-FORMATS=(fp32:8:23 fp24:7:16 bf16:8:7 fp16:5:10)
+       rt_ray_setup rt_isect_unit rt_hit_out)
+# Units without E and M: one row each, default parameters.
+PLAIN_UNITS=(rt_fifo rt_list_unit rt_thread_stack rt_mem_system)
+# The preset formats: the one list in cmake/presets.cmake.
+read -r -a FORMATS <<< "$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname "$0")/../cmake/presets.cmake")"
 
-run_one() {  # run_one <unit> <name> <E> <M>: writes $WORK/<unit>_<name>.{log,row}
+run_one() {  # run_one <unit> <name> <E> <M>: writes $WORK/<unit>_<name>.{log,row}; E "-": defaults
   local unit="$1" name="$2" e="$3" m="$4"
   local log="$WORK/${unit}_${name}.log"
+  local chp=""
+  if [ "$e" != - ]; then chp="chparam -set E $e -set M $m $unit"; fi
   if ! "$YOSYS" -q -l "$log" -p "
       read_verilog -sv $RTL/kdrt_fp_pkg.sv $RTL/kdrt_pkg.sv $(ls $RTL/*.sv | grep -v _pkg.sv | tr '\n' ' ')
-      chparam -set E $e -set M $m $unit
+      $chp
       synth -flatten -top $unit
       select -assert-none t:\$*latch* t:\$_DLATCH* t:\$_SR_* t:\$sr
       tee -o $WORK/${unit}_${name}.stat stat
@@ -48,6 +54,9 @@ for unit in "${UNITS[@]}"; do
     jobs_list+=("$unit $name $e $m")
   done
 done
+for unit in "${PLAIN_UNITS[@]}"; do
+  jobs_list+=("$unit default - -")
+done
 printf '%s\n' "${jobs_list[@]}" | xargs -P "$JOBS" -L 1 bash -c 'run_one "$@"' _
 
 latency() {  # documented latency of <unit> for mantissa bits <m>
@@ -63,6 +72,10 @@ latency() {  # documented latency of <unit> for mantissa bits <m>
     rt_clip_unit) echo 11 ;;
     rt_ray_setup) echo $(($2 + 6)) ;;
     rt_isect_unit) echo $(($2 + 34)) ;;
+    rt_hit_out) echo 1 ;;
+    rt_fifo) echo 1 ;;
+    rt_thread_stack) echo 0 ;;
+    *) echo - ;;
   esac
 }
 
@@ -82,6 +95,16 @@ fail=0
       read -r cells ffs depth <<< "$row"
       echo "| $unit | $name | $(latency "$unit" "$m") | $cells | $ffs | $depth |"
     done
+  done
+  for unit in "${PLAIN_UNITS[@]}"; do
+    row=$(cat "$WORK/${unit}_default.row")
+    if [ "$row" = FAIL ]; then
+      echo "| $unit | defaults | - | FAILED (latch or synthesis error) | | |"
+      fail=1
+      continue
+    fi
+    read -r cells ffs depth <<< "$row"
+    echo "| $unit | defaults | $(latency "$unit" 0) | $cells | $ffs | $depth |"
   done
 } > "$WORK/table.md"
 

@@ -6,26 +6,52 @@
 // One cycle is split in two so the caller sees a settled design before the
 // edge: Settle() (evaluate with the inputs the caller has just set, clock
 // low; outputs and handshakes of this cycle are then valid), then Tick()
-// (rising edge, falling edge).
+// (rising edge, falling edge); Step() is both.
+//
+// Also used by the unit benches (tests/rtl/): a top without clk_i / rst_ni
+// (a combinational unit) is only evaluated. Waveforms need a model verilated
+// with --trace-fst (verilate(... TRACE_FST), which defines VM_TRACE_FST=1);
+// in a target whose models are not traced (VM_TRACE_FST=0) OpenTrace()
+// throws and nothing of the FST writer is linked.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include <verilated.h>
+#if !defined(VM_TRACE_FST) || VM_TRACE_FST
+#define KDRT_SIM_CTRL_FST 1
 #include <verilated_fst_c.h>
+#else
+#define KDRT_SIM_CTRL_FST 0
+#endif
 
 namespace kdrt::sim {
+
+namespace detail {
+template <class T, class = void>
+struct HasClock : std::false_type {};
+template <class T>
+struct HasClock<T, std::void_t<decltype(std::declval<T&>().clk_i), decltype(std::declval<T&>().rst_ni)>>
+    : std::true_type {};
+}  // namespace detail
 
 template <class Top>
 class SimCtrl {
  public:
+  static constexpr bool kClocked = detail::HasClock<Top>::value;
+
   SimCtrl() : context_(std::make_unique<VerilatedContext>()) {
     context_->traceEverOn(true);
     top_ = std::make_unique<Top>(context_.get(), "top");
-    top_->clk_i = 0;
-    top_->rst_ni = 0;
+    if constexpr (kClocked) {
+      top_->clk_i = 0;
+      top_->rst_ni = 0;
+    }
   }
   ~SimCtrl() { CloseTrace(); top_->final(); }
   SimCtrl(const SimCtrl&) = delete;
@@ -36,34 +62,46 @@ class SimCtrl {
 
   // Starts an FST waveform; nothing is dumped while dumping is disabled.
   void OpenTrace(const std::string& path) {
+#if KDRT_SIM_CTRL_FST
     fst_ = std::make_unique<VerilatedFstC>();
     top_->trace(fst_.get(), 99);
     fst_->open(path.c_str());
     if (!fst_->isOpen()) throw std::runtime_error("cannot open waveform file " + path);
+#else
+    throw std::runtime_error("cannot write " + path + ": the model was verilated without --trace-fst");
+#endif
   }
   void CloseTrace() {
+#if KDRT_SIM_CTRL_FST
     if (fst_) {
       fst_->close();
       fst_.reset();
     }
+#endif
   }
+#if KDRT_SIM_CTRL_FST
   bool tracing() const { return fst_ != nullptr; }
+#else
+  bool tracing() const { return false; }
+#endif
   void EnableDump(bool on) { dump_ = on; }
 
   // Holds rst_ni low for `cycles` cycles (the cycle counter does not run).
   void Reset(int cycles = 4) {
-    top_->rst_ni = 0;
-    for (int i = 0; i < cycles; ++i) {
-      Settle();
-      Edge();
+    if constexpr (kClocked) {
+      top_->rst_ni = 0;
+      for (int i = 0; i < cycles; ++i) {
+        Settle();
+        Edge();
+      }
+      top_->rst_ni = 1;
     }
-    top_->rst_ni = 1;
     cycle_ = 0;
   }
 
   // Evaluates the design with the current inputs before the rising edge.
   void Settle() {
-    top_->clk_i = 0;
+    if constexpr (kClocked) top_->clk_i = 0;
     top_->eval();
     Dump(0);
   }
@@ -74,22 +112,34 @@ class SimCtrl {
     ++cycle_;
   }
 
+  // One whole cycle: Settle(), then Tick().
+  void Step() {
+    Settle();
+    Tick();
+  }
+
  private:
   void Edge() {
-    top_->clk_i = 1;
-    top_->eval();
-    Dump(1);
-    top_->clk_i = 0;
+    if constexpr (kClocked) {
+      top_->clk_i = 1;
+      top_->eval();
+      Dump(1);
+      top_->clk_i = 0;
+    }
     top_->eval();
     ++phase_time_;
   }
-  void Dump(int half) {
+  void Dump([[maybe_unused]] int half) {
+#if KDRT_SIM_CTRL_FST
     if (fst_ && dump_) fst_->dump(phase_time_ * 10 + half * 5);
+#endif
   }
 
   std::unique_ptr<VerilatedContext> context_;
   std::unique_ptr<Top> top_;
+#if KDRT_SIM_CTRL_FST
   std::unique_ptr<VerilatedFstC> fst_;
+#endif
   bool dump_ = true;
   uint64_t cycle_ = 0;
   uint64_t phase_time_ = 0;  // cycles including reset, for waveform times

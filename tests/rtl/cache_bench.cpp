@@ -14,10 +14,13 @@
 
 #include "Vrt_cache_lines2.h"
 #include "Vrt_cache_lines3.h"
+#include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
 namespace kdrt::rtlbench {
 namespace {
+
+using sim::SimCtrl;
 
 constexpr int kLines = 8;    // must match the verilated parameters
 constexpr int kTags = 256;   // TagWidth = 8
@@ -30,7 +33,8 @@ struct Request {
 
 template <class Dut>
 bool Run(const char* name, int beats, int mshrs, uint64_t count) {
-  Dut dut;
+  SimCtrl<Dut> sim;
+  Dut& dut = sim.top();
   std::mt19937 rng(5);
   std::bernoulli_distribution bubble(0.3), stall(0.2);
   std::uniform_int_distribution<int> latency(1, 30);
@@ -58,15 +62,11 @@ bool Run(const char* name, int beats, int mshrs, uint64_t count) {
     return false;
   };
 
-  dut.clk_i = 0;
-  dut.rst_ni = 0;
-  dut.eval();
-  dut.clk_i = 1;
-  dut.eval();
-  dut.rst_ni = 1;
+  dut.req_valid_i = 0;
+  dut.mem_resp_valid_i = 0;
+  sim.Reset();
   for (uint64_t cycle = 0; answered < count; ++cycle) {
     if (cycle > 200 * count + 1000) return fail("timeout");
-    dut.clk_i = 0;
     if (!have_pending && sent < count && !free_tags.empty() && !bubble(rng)) {
       const uint32_t key = key_dist(rng);
       const size_t pick =
@@ -100,7 +100,7 @@ bool Run(const char* name, int beats, int mshrs, uint64_t count) {
       in_flight.erase(in_flight.begin() + static_cast<long>(i));
     }
     dut.mem_req_ready_i = !stall(rng);
-    dut.eval();
+    sim.Settle();
     if (dut.mem_req_valid_o && dut.mem_req_ready_i) {
       in_flight.push_back(
           Beat{cycle + static_cast<uint64_t>(latency(rng)), dut.mem_req_addr_o, dut.mem_req_id_o});
@@ -142,19 +142,16 @@ bool Run(const char* name, int beats, int mshrs, uint64_t count) {
       free_tags.push_back(tag);
       ++answered;
     }
-    dut.clk_i = 1;
-    dut.eval();
+    sim.Tick();
   }
   // Drain: nothing more may come back.
   for (int cycle = 0; cycle < 100; ++cycle) {
-    dut.clk_i = 0;
     dut.req_valid_i = 0;
     dut.resp_ready_i = 1;
     dut.mem_resp_valid_i = 0;
-    dut.eval();
+    sim.Settle();
     if (dut.resp_valid_o) return fail("response after every request was answered");
-    dut.clk_i = 1;
-    dut.eval();
+    sim.Tick();
   }
   if (sent != count || !outstanding.empty() || !in_flight.empty()) {
     return fail("requests left unanswered");

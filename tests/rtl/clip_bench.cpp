@@ -3,7 +3,6 @@
 // bubbles and output backpressure. Cases include rays parallel to slabs (inf
 // and NaN distances), origins on box faces, flat boxes, then random.
 #include <cstdio>
-#include <deque>
 #include <random>
 
 #include "Vrt_clip_unit_bf16.h"
@@ -11,6 +10,7 @@
 #include "Vrt_clip_unit_fp24.h"
 #include "Vrt_clip_unit_fp32.h"
 #include "tests/rtl/isect_bench_util.h"
+#include "tests/rtl/stream_bench.h"
 #include "trace/traversal.h"
 
 namespace kdrt::rtlbench {
@@ -26,8 +26,8 @@ struct In {
 };
 
 struct Out {
-  uint32_t tag, t0, t1;
-  bool miss;
+  uint32_t tag = 0, t0 = 0, t1 = 0;
+  bool miss = false;
   bool operator==(const Out& x) const { return tag == x.tag && t0 == x.t0 && t1 == x.t1 && miss == x.miss; }
 };
 
@@ -69,70 +69,47 @@ template <class Dut>
 bool RunPreset(Format f, uint64_t count) {
   const SoftArith a(f);
   const int w = f.Width();
-  Dut dut;
-  std::mt19937 rng(99);
-  std::bernoulli_distribution bubble(0.2), stall(0.3);
-  dut.clk_i = 0;
-  dut.rst_ni = 0;
-  dut.in_valid_i = 0;
-  dut.out_ready_i = 0;
-  dut.eval();
-  dut.clk_i = 1;
-  dut.eval();
-  dut.rst_ni = 1;
-  std::deque<Out> expected;
-  uint64_t sent = 0, checked = 0;
-  In pending{};
-  bool have_pending = false;
-  for (uint64_t cycle = 0; checked < count; ++cycle) {
-    if (cycle > 20 * count + 1000) {
-      std::printf("rt_clip_unit %s: FAIL (timeout)\n", f.Name().c_str());
-      return false;
-    }
-    dut.clk_i = 0;
-    if (!have_pending && sent < count && !bubble(rng)) {
-      pending = RandomInput(a, rng, sent);
-      have_pending = true;
-    }
-    dut.in_valid_i = have_pending;
-    dut.in_tag_i = pending.tag;
+  SimCtrl<Dut> sim;
+  sim.top().in_valid_i = 0;
+  sim.top().out_ready_i = 0;
+  sim.Reset();
+  std::mt19937 stimulus(99);
+  Rng traffic_rng(7);
+  uint64_t sent = 0;
+  StreamUnit<Dut, In, Out> unit;
+  unit.name = "rt_clip_unit " + f.Name();
+  unit.next = [&](In& in) {
+    if (sent >= count) return false;
+    in = RandomInput(a, stimulus, sent++);
+    return true;
+  };
+  unit.drive = [w](Dut& dut, const In& in) {
+    dut.in_tag_i = in.tag;
     for (int k = 0; k < 3; ++k) {
-      PutBits(dut.bounds_min_i, 32 * k, 32, fp::BitsOf(pending.bmin[k]));
-      PutBits(dut.bounds_max_i, 32 * k, 32, fp::BitsOf(pending.bmax[k]));
-      PutBits(dut.in_o_i, w * k, w, pending.o[k]);
-      PutBits(dut.in_inv_i, w * k, w, pending.inv[k]);
+      PutBits(dut.bounds_min_i, 32 * k, 32, fp::BitsOf(in.bmin[k]));
+      PutBits(dut.bounds_max_i, 32 * k, 32, fp::BitsOf(in.bmax[k]));
+      PutBits(dut.in_o_i, w * k, w, in.o[k]);
+      PutBits(dut.in_inv_i, w * k, w, in.inv[k]);
     }
-    dut.in_tmin_i = pending.tmin;
-    dut.in_tmax_i = pending.tmax;
-    dut.out_ready_i = !stall(rng);
-    dut.eval();
-    const bool in_fire = dut.in_valid_i && dut.in_ready_o;
-    if (dut.out_valid_o && dut.out_ready_i) {
-      const Out got{dut.out_tag_o, static_cast<uint32_t>(dut.out_t0_o), static_cast<uint32_t>(dut.out_t1_o),
-                    dut.out_miss_o != 0};
-      if (expected.empty() || !(got == expected.front())) {
-        std::printf("rt_clip_unit %s: FAIL at result %llu\n", f.Name().c_str(),
-                    static_cast<unsigned long long>(checked));
-        if (!expected.empty()) {
-          const Out& e = expected.front();
-          std::printf("  model: t0 %s t1 %s miss %d tag %u\n", Fmt(f, e.t0).c_str(), Fmt(f, e.t1).c_str(), e.miss,
-                      e.tag);
-        }
-        std::printf("  rtl:   t0 %s t1 %s miss %d tag %u\n", Fmt(f, got.t0).c_str(), Fmt(f, got.t1).c_str(),
-                    got.miss, got.tag);
-        return false;
-      }
-      expected.pop_front();
-      ++checked;
-    }
-    if (in_fire) {
-      expected.push_back(Model(a, pending));
-      have_pending = false;
-      ++sent;
-    }
-    dut.clk_i = 1;
-    dut.eval();
-  }
+    dut.in_tmin_i = in.tmin;
+    dut.in_tmax_i = in.tmax;
+  };
+  unit.read = [](const Dut& dut) {
+    return Out{dut.out_tag_o, static_cast<uint32_t>(dut.out_t0_o), static_cast<uint32_t>(dut.out_t1_o),
+               dut.out_miss_o != 0};
+  };
+  unit.model = [&](const In& in) { return Model(a, in); };
+  unit.report = [&](const In&, const Out& e, const Out& got, uint64_t index) {
+    std::printf("rt_clip_unit %s: FAIL at result %llu\n", f.Name().c_str(), static_cast<unsigned long long>(index));
+    std::printf("  model: t0 %s t1 %s miss %d tag %u\n", Fmt(f, e.t0).c_str(), Fmt(f, e.t1).c_str(), e.miss, e.tag);
+    std::printf("  rtl:   t0 %s t1 %s miss %d tag %u\n", Fmt(f, got.t0).c_str(), Fmt(f, got.t1).c_str(), got.miss,
+                got.tag);
+  };
+  StreamTraffic traffic;
+  traffic.ready = {0.7};
+  traffic.gap = {0.2};
+  StreamStats stats;
+  if (!RunStream(sim, traffic_rng, traffic, unit, &stats) || stats.results != count) return false;
   std::printf("rt_clip_unit %s: PASS (%llu rays)\n", f.Name().c_str(), static_cast<unsigned long long>(count));
   return true;
 }

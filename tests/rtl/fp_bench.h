@@ -3,7 +3,7 @@
 // random stalls (en_i low), checks the latency, that a stalled pipeline holds
 // its outputs, that results come out in order and that every result equals
 // the C++ model (sw/fp/format.h). The first mismatch is reported with the
-// operands and both results.
+// operands and both results. Clock and reset: sim/sim_ctrl.h.
 #pragma once
 
 #include <array>
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "fp/format.h"
+#include "sim/sim_ctrl.h"
 #include "tests/fp/fp_vectors.h"
 
 namespace kdrt::fp::bench {
@@ -92,21 +93,13 @@ bool RunUnit(const char* unit, Format f, unsigned latency, Source next,
              const std::function<void(Dut&, const Vec&)>& drive,
              const std::function<Out(const Dut&)>& read,
              const std::function<Out(const Vec&)>& model, int n_out, uint64_t seed) {
-  Dut dut;
+  sim::SimCtrl<Dut> sim;
+  Dut& dut = sim.top();
   const std::string what = std::string(unit) + " " + f.Name();
-  auto tick = [&dut] {
-    dut.clk_i = 0;
-    dut.eval();
-    dut.clk_i = 1;
-    dut.eval();
-  };
-  dut.clk_i = 0;
+  auto tick = [&sim] { sim.Step(); };
   dut.en_i = 1;
   dut.valid_i = 0;
-  dut.rst_ni = 0;
-  dut.eval();
-  dut.rst_ni = 1;
-  dut.eval();
+  sim.Reset();
 
   // Latency: one valid input, count enabled cycles until it comes out.
   dut.valid_i = 1;
@@ -182,7 +175,6 @@ bool RunUnit(const char* unit, Format f, unsigned latency, Source next,
       return false;
     }
   }
-  dut.final();
   std::printf("PASS %s: %llu vectors, latency %u\n", what.c_str(),
               static_cast<unsigned long long>(checked), latency);
   return issued == checked;

@@ -11,7 +11,6 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
-#include <deque>
 #include <functional>
 #include <string>
 #include <vector>
@@ -23,6 +22,7 @@
 #include "Vrt_isect_unit_fp24.h"
 #include "Vrt_isect_unit_fp32.h"
 #include "tests/rtl/isect_bench_util.h"
+#include "tests/rtl/stream_bench.h"
 #include "trace/intersect.h"
 #include "trace/watertight.h"
 
@@ -282,183 +282,124 @@ struct Stats {
   uint64_t cycles = 0;
 };
 
+// A test in flight: the case and its tag; a result: outcome, tag and id.
+struct In {
+  Case c;
+  uint32_t tag = 0;
+};
+struct Out {
+  Outcome o;
+  uint32_t tag = 0, id = 0;
+  bool operator==(const Out& x) const { return o == x.o && tag == x.tag && id == x.id; }
+};
+
 template <class Dut>
 class Harness {
  public:
   Harness(Format f, uint64_t seed) : f_(f), a_(f), w_(f.Width()), rng_(seed) {
-    dut_.clk_i = 0;
-    dut_.rst_ni = 0;
-    dut_.in_valid_i = 0;
-    dut_.out_ready_i = 1;
-    dut_.eval();
-    dut_.rst_ni = 1;
-    dut_.eval();
+    sim_.top().in_valid_i = 0;
+    sim_.top().out_ready_i = 1;
+    sim_.Reset();
+    unit_.name = "rt_isect_unit " + f.Name();
+    unit_.drive = [this](Dut& dut, const In& in) { Drive(dut, in); };
+    unit_.idle = [this](Dut& dut) { Garbage(dut); };  // the payload is don't-care while in_valid_i is low
+    unit_.read = [](const Dut& dut) {
+      return Out{Outcome{dut.out_hit_o != 0, static_cast<uint32_t>(dut.out_t_o), static_cast<uint32_t>(dut.out_u_o),
+                         static_cast<uint32_t>(dut.out_v_o)},
+                 dut.out_tag_o, dut.out_id_o};
+    };
+    unit_.model = [this](const In& in) { return Out{Model(a_, in.c), in.tag, in.c.id}; };
+    unit_.report = [this](const In& in, const Out& want, const Out& got, uint64_t index) {
+      Report(in.c, want, got, index);
+    };
   }
-  ~Harness() { dut_.final(); }
 
   // Enabled cycles from acceptance to the result, measured on an idle pipe.
   unsigned MeasureLatency() {
-    Case c;
-    c.ray = Ray{{0, 0, 1}, {0, 0, -1}, 0.0f, INFINITY};
-    c.tri = Record({-1, -1, 0}, {1, -1, 0}, {0, 1, 0});
-    Drive(c, 0);
-    dut_.in_valid_i = 1;
-    dut_.out_ready_i = 1;
-    Tick();
-    dut_.in_valid_i = 0;
-    unsigned cycles = 1;
-    while (!dut_.out_valid_o && cycles < 1000) {
-      Tick();
-      ++cycles;
-    }
-    Tick();  // consume it
-    return cycles;
+    In in;
+    in.c.ray = Ray{{0, 0, 1}, {0, 0, -1}, 0.0f, INFINITY};
+    in.c.tri = Record({-1, -1, 0}, {1, -1, 0}, {0, 1, 0});
+    return rtlbench::MeasureLatency(sim_, unit_, in);
   }
 
   // Streams the cases from `next` through the unit; `on_result` sees each
   // case with the unit's hit flag. Returns false at the first mismatch.
   bool Run(const std::function<bool(Case&)>& next, const std::function<void(const Case&, bool)>& on_result,
            Stats* stats) {
-    struct InFlight {
-      Case c;
-      Outcome want;
-      uint32_t tag;
+    unit_.next = [&](In& in) {
+      if (!next(in.c)) return false;
+      in.tag = next_tag_;
+      next_tag_ = (next_tag_ + 1) & kTagMask;
+      return true;
     };
-    std::deque<InFlight> flight;
-    Case cur;
-    bool have = false, offering = false, exhausted = false;
-    bool waiting_out = false;
-    Outcome last_out;
-    uint32_t last_tag = 0, last_id = 0;
+    unit_.on_result = [&](const In& in, const Out& got) {
+      on_result(in.c, got.o.hit);
+      stats->hits += got.o.hit;
+    };
     // Backpressure comes in regimes: the chance of out_ready_i and of an
     // input bubble change every few hundred cycles.
-    double p_ready = 1.0, p_gap = 0.0;
-    for (uint64_t cycle = 0;; ++cycle) {
-      if (cycle % 512 == 0) {
-        const double r[4] = {1.0, 0.9, 0.5, 0.1};
-        p_ready = r[rng_.Below(4)];
-        p_gap = std::array<double, 3>{0.0, 0.2, 0.7}[rng_.Below(3)];
-      }
-      if (!have && !exhausted) {
-        have = next(cur);
-        exhausted = !have;
-      }
-      if (!have && flight.empty()) break;
-      if (!offering && have && !rng_.Chance(p_gap)) {
-        offering = true;
-        Drive(cur, next_tag_);
-      } else if (!offering && rng_.Chance(0.1)) {
-        Garbage();  // the payload is don't-care while in_valid_i is low
-      }
-      dut_.in_valid_i = offering;
-      dut_.out_ready_i = rng_.Chance(p_ready);
-      dut_.clk_i = 0;
-      dut_.eval();
-
-      const Outcome got = Read();
-      const uint32_t got_tag = dut_.out_tag_o, got_id = dut_.out_id_o;
-      if (waiting_out && (!dut_.out_valid_o || !(got == last_out) || got_tag != last_tag || got_id != last_id)) {
-        std::printf("FAIL rt_isect_unit %s: output changed while out_ready_i was low\n", f_.Name().c_str());
-        return false;
-      }
-      waiting_out = dut_.out_valid_o && !dut_.out_ready_i;
-      last_out = got;
-      last_tag = got_tag;
-      last_id = got_id;
-      const bool in_fire = offering && dut_.in_ready_o;
-      if (dut_.out_valid_o && dut_.out_ready_i) {
-        if (flight.empty()) {
-          std::printf("FAIL rt_isect_unit %s: a result with no test in flight\n", f_.Name().c_str());
-          return false;
-        }
-        const InFlight& x = flight.front();
-        if (!(got == x.want) || got_tag != x.tag || got_id != x.c.id) {
-          Report(x.c, x.want, x.tag, got, got_tag, got_id, stats->tests);
-          return false;
-        }
-        on_result(x.c, got.hit);
-        stats->hits += got.hit;
-        ++stats->tests;
-        flight.pop_front();
-      }
-      dut_.clk_i = 1;
-      dut_.eval();
-      ++stats->cycles;
-      if (in_fire) {
-        flight.push_back({cur, Model(a_, cur), next_tag_});
-        next_tag_ = (next_tag_ + 1) & kTagMask;
-        have = offering = false;
-      }
-      if (cycle > 1000 && flight.size() > 1000) {
-        std::printf("FAIL rt_isect_unit %s: %zu tests in flight, nothing comes out\n", f_.Name().c_str(),
-                    flight.size());
-        return false;
-      }
-    }
-    return true;
+    StreamTraffic traffic;
+    traffic.ready = {1.0, 0.9, 0.5, 0.1};
+    traffic.gap = {0.0, 0.2, 0.7};
+    traffic.garbage = 0.1;
+    StreamStats run;
+    run.results = stats->tests;
+    const bool ok = RunStream(sim_, rng_, traffic, unit_, &run);
+    stats->tests = run.results;
+    stats->cycles += run.cycles;
+    return ok;
   }
 
  private:
-  void Tick() {
-    dut_.clk_i = 0;
-    dut_.eval();
-    dut_.clk_i = 1;
-    dut_.eval();
-  }
-
-  void Drive(const Case& c, uint32_t tag) {
+  void Drive(Dut& dut, const In& in) {
+    const Case& c = in.c;
     const Setup r = SetupRay(a_, c.ray);
-    dut_.in_tag_i = tag;
-    dut_.in_id_i = c.id;
-    for (int i = 0; i < 3; ++i) PutBits(dut_.in_o_i, i * w_, w_, r.o[i]);
-    dut_.in_kx_i = static_cast<uint8_t>(r.kx);
-    dut_.in_ky_i = static_cast<uint8_t>(r.ky);
-    dut_.in_kz_i = static_cast<uint8_t>(r.kz);
-    dut_.in_sx_i = r.sx;
-    dut_.in_sy_i = r.sy;
-    dut_.in_sz_i = r.sz;
-    dut_.in_tmin_i = r.tmin;
-    dut_.in_tmax_i = a_.Load(c.leaf_tmax);
+    dut.in_tag_i = in.tag;
+    dut.in_id_i = c.id;
+    for (int i = 0; i < 3; ++i) PutBits(dut.in_o_i, i * w_, w_, r.o[i]);
+    dut.in_kx_i = static_cast<uint8_t>(r.kx);
+    dut.in_ky_i = static_cast<uint8_t>(r.ky);
+    dut.in_kz_i = static_cast<uint8_t>(r.kz);
+    dut.in_sx_i = r.sx;
+    dut.in_sy_i = r.sy;
+    dut.in_sz_i = r.sz;
+    dut.in_tmin_i = r.tmin;
+    dut.in_tmax_i = a_.Load(c.leaf_tmax);
     uint32_t words[9];
     std::memcpy(words, &c.tri, sizeof words);
-    for (int j = 0; j < 9; ++j) PutBits(dut_.in_tri_i, 32 * j, 32, words[j]);
+    for (int j = 0; j < 9; ++j) PutBits(dut.in_tri_i, 32 * j, 32, words[j]);
   }
 
-  void Garbage() {
+  void Garbage(Dut& dut) {
     const uint32_t mask = f_.WidthMask();
-    dut_.in_tag_i = rng_.Bits32() & kTagMask;
-    dut_.in_id_i = rng_.Bits32();
-    for (int i = 0; i < 3; ++i) PutBits(dut_.in_o_i, i * w_, w_, rng_.Bits32());
-    dut_.in_kx_i = static_cast<uint8_t>(rng_.Below(4));
-    dut_.in_sx_i = rng_.Bits32() & mask;
-    dut_.in_tmax_i = rng_.Bits32() & mask;
-    for (int j = 0; j < 9; ++j) PutBits(dut_.in_tri_i, 32 * j, 32, rng_.Bits32());
+    dut.in_tag_i = rng_.Bits32() & kTagMask;
+    dut.in_id_i = rng_.Bits32();
+    for (int i = 0; i < 3; ++i) PutBits(dut.in_o_i, i * w_, w_, rng_.Bits32());
+    dut.in_kx_i = static_cast<uint8_t>(rng_.Below(4));
+    dut.in_sx_i = rng_.Bits32() & mask;
+    dut.in_tmax_i = rng_.Bits32() & mask;
+    for (int j = 0; j < 9; ++j) PutBits(dut.in_tri_i, 32 * j, 32, rng_.Bits32());
   }
 
-  Outcome Read() const {
-    return Outcome{dut_.out_hit_o != 0, static_cast<uint32_t>(dut_.out_t_o), static_cast<uint32_t>(dut_.out_u_o),
-                   static_cast<uint32_t>(dut_.out_v_o)};
-  }
-
-  void Report(const Case& c, const Outcome& want, uint32_t want_tag, const Outcome& got, uint32_t got_tag,
-              uint32_t got_id, uint64_t index) const {
+  void Report(const Case& c, const Out& want, const Out& got, uint64_t index) const {
     std::printf("FAIL rt_isect_unit %s: first mismatch at test %llu\n", f_.Name().c_str(),
                 static_cast<unsigned long long>(index));
     std::printf("  %s\n  leaf tmax = %s\n  %s\n", RayString(c.ray).c_str(), F32(c.leaf_tmax).c_str(),
                 TriangleString(c.tri).c_str());
-    auto show = [&](const char* who, const Outcome& o, uint32_t tag, uint32_t id) {
-      std::printf("  %-5s hit %d  t %s  u %s  v %s  tag %u  id %u\n", who, o.hit, Fmt(f_, o.t).c_str(),
-                  Fmt(f_, o.u).c_str(), Fmt(f_, o.v).c_str(), tag, id);
+    auto show = [&](const char* who, const Out& x) {
+      std::printf("  %-5s hit %d  t %s  u %s  v %s  tag %u  id %u\n", who, x.o.hit, Fmt(f_, x.o.t).c_str(),
+                  Fmt(f_, x.o.u).c_str(), Fmt(f_, x.o.v).c_str(), x.tag, x.id);
     };
-    show("model", want, want_tag, c.id);
-    show("rtl", got, got_tag, got_id);
+    show("model", want);
+    show("rtl", got);
   }
 
   Format f_;
   SoftArith a_;
   int w_;
   Rng rng_;
-  Dut dut_;
+  SimCtrl<Dut> sim_;
+  StreamUnit<Dut, In, Out> unit_;
   uint32_t next_tag_ = 0;
 };
 

@@ -7,7 +7,6 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
-#include <deque>
 #include <functional>
 #include <string>
 #include <vector>
@@ -17,6 +16,7 @@
 #include "Vrt_ray_setup_fp24.h"
 #include "Vrt_ray_setup_fp32.h"
 #include "tests/rtl/isect_bench_util.h"
+#include "tests/rtl/stream_bench.h"
 #include "trace/intersect.h"
 
 namespace kdrt::rtlbench {
@@ -34,7 +34,10 @@ unsigned DocumentedLatency(Format f) { return 6 + static_cast<unsigned>(f.m); }
 struct Out {
   std::array<uint32_t, 14> v{};  // o[3], d[3], inv[3], tmin, tmax, sx, sy, sz
   int kx = 0, ky = 0, kz = 0;
-  bool operator==(const Out& o) const { return v == o.v && kx == o.kx && ky == o.ky && kz == o.kz; }
+  uint32_t tag = 0;
+  bool operator==(const Out& o) const {
+    return v == o.v && kx == o.kx && ky == o.ky && kz == o.kz && tag == o.tag;
+  }
 };
 
 Out Model(const SoftArith& a, const Ray& ray) {
@@ -103,25 +106,31 @@ Ray RandomRay(Rng& rng) {
   return r;
 }
 
+struct In {
+  Ray ray;
+  uint32_t tag = 0;
+};
+
 template <class Dut>
 bool RunPreset(Format f, uint64_t random_count) {
   const auto start = std::chrono::steady_clock::now();
   const SoftArith a(f);
   const int w = f.Width();
-  Dut dut;
+  SimCtrl<Dut> sim;
+  sim.top().in_valid_i = 0;
+  sim.top().out_ready_i = 1;
+  sim.Reset();
   Rng rng(500 + f.m);
-  auto tick = [&] {
-    dut.clk_i = 0;
-    dut.eval();
-    dut.clk_i = 1;
-    dut.eval();
-  };
-  auto drive = [&](const Ray& r, uint32_t tag) {
-    float words[8] = {r.o[0], r.o[1], r.o[2], r.d[0], r.d[1], r.d[2], r.tmin, r.tmax};
+
+  StreamUnit<Dut, In, Out> unit;
+  unit.name = "rt_ray_setup " + f.Name();
+  unit.drive = [](Dut& dut, const In& in) {
+    const Ray& r = in.ray;
+    const float words[8] = {r.o[0], r.o[1], r.o[2], r.d[0], r.d[1], r.d[2], r.tmin, r.tmax};
     for (int j = 0; j < 8; ++j) PutBits(dut.in_ray_i, 32 * j, 32, fp::BitsOf(words[j]));
-    dut.in_tag_i = tag;
+    dut.in_tag_i = in.tag;
   };
-  auto read = [&]() {
+  unit.read = [w](const Dut& dut) {
     Out o;
     for (int i = 0; i < 3; ++i) {
       o.v[i] = static_cast<uint32_t>(GetBits(dut.out_o_o, i * w, w));
@@ -136,27 +145,22 @@ bool RunPreset(Format f, uint64_t random_count) {
     o.kx = dut.out_kx_o;
     o.ky = dut.out_ky_o;
     o.kz = dut.out_kz_o;
+    o.tag = dut.out_tag_o;
     return o;
   };
-  dut.clk_i = 0;
-  dut.rst_ni = 0;
-  dut.in_valid_i = 0;
-  dut.out_ready_i = 1;
-  dut.eval();
-  dut.rst_ni = 1;
-  dut.eval();
+  unit.model = [&](const In& in) {
+    Out o = Model(a, in.ray);
+    o.tag = in.tag;
+    return o;
+  };
+  unit.report = [&](const In& in, const Out& want, const Out& got, uint64_t index) {
+    std::printf("FAIL rt_ray_setup %s: first mismatch at ray %llu\n  %s\n  model (tag %u):%s\n  rtl (tag %u):%s\n",
+                f.Name().c_str(), static_cast<unsigned long long>(index), RayString(in.ray).c_str(), want.tag,
+                OutString(f, want).c_str(), got.tag, OutString(f, got).c_str());
+  };
 
   // Latency on an idle pipe.
-  drive(Ray{{0, 0, 0}, {1, 2, 3}, 0.0f, 1.0f}, 0);
-  dut.in_valid_i = 1;
-  tick();
-  dut.in_valid_i = 0;
-  unsigned latency = 1;
-  while (!dut.out_valid_o && latency < 1000) {
-    tick();
-    ++latency;
-  }
-  tick();
+  const unsigned latency = MeasureLatency(sim, unit, In{Ray{{0, 0, 0}, {1, 2, 3}, 0.0f, 1.0f}, 0});
   std::printf("rt_ray_setup %s: latency %u cycles (documented %u)\n", f.Name().c_str(), latency,
               DocumentedLatency(f));
   if (latency != DocumentedLatency(f)) {
@@ -167,78 +171,28 @@ bool RunPreset(Format f, uint64_t random_count) {
 
   const std::vector<Ray> directed = DirectedRays();
   const uint64_t total = directed.size() + random_count;
-  uint64_t issued = 0, checked = 0, cycles = 0;
+  uint64_t issued = 0;
+  uint32_t tag = 0;
   Rng stim(99);
-  struct InFlight {
-    Ray ray;
-    Out want;
-    uint32_t tag;
+  unit.next = [&](In& in) {
+    if (issued >= total) return false;
+    in.ray = issued < directed.size() ? directed[issued] : RandomRay(stim);
+    in.tag = tag;
+    tag = (tag + 1) & kTagMask;
+    ++issued;
+    return true;
   };
-  std::deque<InFlight> flight;
-  Ray cur;
-  bool have = false, offering = false, waiting_out = false;
-  Out last_out;
-  uint32_t last_tag = 0, tag = 0;
-  double p_ready = 1.0, p_gap = 0.0;
-  for (;; ++cycles) {
-    if (cycles % 512 == 0) {
-      p_ready = std::array<double, 4>{1.0, 0.9, 0.5, 0.1}[rng.Below(4)];
-      p_gap = std::array<double, 3>{0.0, 0.2, 0.7}[rng.Below(3)];
-    }
-    if (!have && issued < total) {
-      cur = issued < directed.size() ? directed[issued] : RandomRay(stim);
-      ++issued;
-      have = true;
-    }
-    if (!have && flight.empty()) break;
-    if (!offering && have && !rng.Chance(p_gap)) {
-      offering = true;
-      drive(cur, tag);
-    }
-    dut.in_valid_i = offering;
-    dut.out_ready_i = rng.Chance(p_ready);
-    dut.clk_i = 0;
-    dut.eval();
-    const Out got = read();
-    const uint32_t got_tag = dut.out_tag_o;
-    if (waiting_out && (!dut.out_valid_o || !(got == last_out) || got_tag != last_tag)) {
-      std::printf("FAIL rt_ray_setup %s: output changed while out_ready_i was low\n", f.Name().c_str());
-      return false;
-    }
-    waiting_out = dut.out_valid_o && !dut.out_ready_i;
-    last_out = got;
-    last_tag = got_tag;
-    const bool in_fire = offering && dut.in_ready_o;
-    if (dut.out_valid_o && dut.out_ready_i) {
-      if (flight.empty()) {
-        std::printf("FAIL rt_ray_setup %s: a result with no ray in flight\n", f.Name().c_str());
-        return false;
-      }
-      const InFlight& x = flight.front();
-      if (!(got == x.want) || got_tag != x.tag) {
-        std::printf("FAIL rt_ray_setup %s: first mismatch at ray %llu\n  %s\n  model (tag %u):%s\n  rtl (tag %u):%s\n",
-                    f.Name().c_str(), static_cast<unsigned long long>(checked), RayString(x.ray).c_str(), x.tag,
-                    OutString(f, x.want).c_str(), got_tag, OutString(f, got).c_str());
-        return false;
-      }
-      flight.pop_front();
-      ++checked;
-    }
-    dut.clk_i = 1;
-    dut.eval();
-    if (in_fire) {
-      flight.push_back({cur, Model(a, cur), tag});
-      tag = (tag + 1) & kTagMask;
-      have = offering = false;
-    }
-  }
-  dut.final();
+  StreamTraffic traffic;
+  traffic.ready = {1.0, 0.9, 0.5, 0.1};
+  traffic.gap = {0.0, 0.2, 0.7};
+  StreamStats stats;
+  if (!RunStream(sim, rng, traffic, unit, &stats)) return false;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("PASS rt_ray_setup %s: %llu rays (%zu directed), %llu cycles, %.1f s\n", f.Name().c_str(),
-              static_cast<unsigned long long>(checked), directed.size(), static_cast<unsigned long long>(cycles),
-              seconds);
+              static_cast<unsigned long long>(stats.results), directed.size(),
+              static_cast<unsigned long long>(stats.cycles), seconds);
   std::fflush(stdout);
-  return checked == total;
+  return stats.results == total;
 }
 
 }  // namespace

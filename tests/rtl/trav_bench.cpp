@@ -4,7 +4,6 @@
 // Cases: splits exactly at the origin, zero and negative-zero directions
 // (NaN and infinite t_split), empty and infinite intervals, then random.
 #include <cstdio>
-#include <deque>
 #include <random>
 
 #include "Vrt_trav_unit_bf16.h"
@@ -12,6 +11,7 @@
 #include "Vrt_trav_unit_fp24.h"
 #include "Vrt_trav_unit_fp32.h"
 #include "tests/rtl/isect_bench_util.h"
+#include "tests/rtl/stream_bench.h"
 #include "trace/traversal.h"
 
 namespace kdrt::rtlbench {
@@ -27,7 +27,7 @@ struct In {
 };
 
 struct Out {
-  uint32_t tag, action, first, second, ts, lo, hi, t0, t1;
+  uint32_t tag = 0, action = 0, first = 0, second = 0, ts = 0, lo = 0, hi = 0, t0 = 0, t1 = 0;
   bool operator==(const Out& x) const {
     return tag == x.tag && action == x.action && first == x.first && second == x.second && ts == x.ts &&
            lo == x.lo && hi == x.hi && t0 == x.t0 && t1 == x.t1;
@@ -79,73 +79,50 @@ In RandomInput(const SoftArith& a, std::mt19937& rng, uint64_t i) {
 template <class Dut>
 bool RunPreset(Format f, uint64_t count) {
   const SoftArith a(f);
-  Dut dut;
-  std::mt19937 rng(1234);
-  std::bernoulli_distribution bubble(0.2), stall(0.3);
-  dut.clk_i = 0;
-  dut.rst_ni = 0;
-  dut.in_valid_i = 0;
-  dut.out_ready_i = 0;
-  dut.eval();
-  dut.clk_i = 1;
-  dut.eval();
-  dut.rst_ni = 1;
-  std::deque<Out> expected;
-  uint64_t sent = 0, checked = 0;
-  In pending{};
-  bool have_pending = false;
-  for (uint64_t cycle = 0; checked < count; ++cycle) {
-    if (cycle > 20 * count + 1000) {
-      std::printf("rt_trav_unit %s: FAIL (timeout)\n", f.Name().c_str());
-      return false;
-    }
-    dut.clk_i = 0;
-    // Drive: a pending input stays put until accepted.
-    if (!have_pending && sent < count && !bubble(rng)) {
-      pending = RandomInput(a, rng, sent);
-      have_pending = true;
-    }
-    dut.in_valid_i = have_pending;
-    dut.in_tag_i = pending.tag;
-    dut.in_split_i = fp::BitsOf(pending.split);
-    dut.in_below_i = pending.below;
-    dut.in_above_i = pending.above;
-    dut.in_o_i = pending.o;
-    dut.in_d_i = pending.d;
-    dut.in_inv_i = pending.inv;
-    dut.in_t0_i = pending.t0;
-    dut.in_t1_i = pending.t1;
-    dut.out_ready_i = !stall(rng);
-    dut.eval();
-    const bool in_fire = dut.in_valid_i && dut.in_ready_o;
-    if (dut.out_valid_o && dut.out_ready_i) {
-      const Out got{dut.out_tag_o, dut.out_action_o, dut.out_first_o, dut.out_second_o,
-                    static_cast<uint32_t>(dut.out_ts_o), static_cast<uint32_t>(dut.out_ts_lo_o),
-                    static_cast<uint32_t>(dut.out_ts_hi_o), static_cast<uint32_t>(dut.out_t0_o),
-                    static_cast<uint32_t>(dut.out_t1_o)};
-      if (expected.empty() || !(got == expected.front())) {
-        std::printf("rt_trav_unit %s: FAIL at result %llu\n", f.Name().c_str(),
-                    static_cast<unsigned long long>(checked));
-        if (!expected.empty()) {
-          const Out& e = expected.front();
-          std::printf("  model: action %u first %u second %u ts %s tag %u\n", e.action, e.first, e.second,
-                      Fmt(f, e.ts).c_str(), e.tag);
-        }
-        std::printf("  rtl:   action %u first %u second %u ts %s tag %u\n", got.action, got.first, got.second,
-                    Fmt(f, got.ts).c_str(), got.tag);
-        return false;
-      }
-      expected.pop_front();
-      ++checked;
-    }
-    if (in_fire) {
-      expected.push_back(Model(a, pending));
-      have_pending = false;
-      ++sent;
-    }
-    dut.clk_i = 1;
-    dut.eval();
-  }
+  SimCtrl<Dut> sim;
+  sim.top().in_valid_i = 0;
+  sim.top().out_ready_i = 0;
+  sim.Reset();
+  std::mt19937 stimulus(1234);
+  Rng traffic_rng(99);
+  uint64_t sent = 0;
+  StreamUnit<Dut, In, Out> unit;
+  unit.name = "rt_trav_unit " + f.Name();
+  unit.next = [&](In& in) {
+    if (sent >= count) return false;
+    in = RandomInput(a, stimulus, sent++);
+    return true;
+  };
+  unit.drive = [](Dut& dut, const In& in) {
+    dut.in_tag_i = in.tag;
+    dut.in_split_i = fp::BitsOf(in.split);
+    dut.in_below_i = in.below;
+    dut.in_above_i = in.above;
+    dut.in_o_i = in.o;
+    dut.in_d_i = in.d;
+    dut.in_inv_i = in.inv;
+    dut.in_t0_i = in.t0;
+    dut.in_t1_i = in.t1;
+  };
+  unit.read = [](const Dut& dut) {
+    return Out{dut.out_tag_o, dut.out_action_o, dut.out_first_o, dut.out_second_o,
+               static_cast<uint32_t>(dut.out_ts_o), static_cast<uint32_t>(dut.out_ts_lo_o),
+               static_cast<uint32_t>(dut.out_ts_hi_o), static_cast<uint32_t>(dut.out_t0_o),
+               static_cast<uint32_t>(dut.out_t1_o)};
+  };
+  unit.model = [&](const In& in) { return Model(a, in); };
+  unit.report = [&](const In&, const Out& e, const Out& got, uint64_t index) {
+    std::printf("rt_trav_unit %s: FAIL at result %llu\n", f.Name().c_str(), static_cast<unsigned long long>(index));
+    std::printf("  model: action %u first %u second %u ts %s tag %u\n", e.action, e.first, e.second,
+                Fmt(f, e.ts).c_str(), e.tag);
+    std::printf("  rtl:   action %u first %u second %u ts %s tag %u\n", got.action, got.first, got.second,
+                Fmt(f, got.ts).c_str(), got.tag);
+  };
+  StreamTraffic traffic;
+  traffic.ready = {0.7};
+  traffic.gap = {0.2};
+  StreamStats stats;
+  if (!RunStream(sim, traffic_rng, traffic, unit, &stats) || stats.results != count) return false;
   std::printf("rt_trav_unit %s: PASS (%llu node steps)\n", f.Name().c_str(), static_cast<unsigned long long>(count));
   return true;
 }

@@ -1,0 +1,75 @@
+// rt_hit_out: rt_core's hit record register. It takes a finished ray's
+// closest hit in the datapath format (E, M) and holds its record, widened to
+// fp32 bits, until hit_ready_i: on a hit the triangle id and t, u, v; on a
+// miss id 0xFFFFFFFF, t = +inf and u = v = 0. A new record is taken in the
+// cycle the held one leaves (in_ready_o = !hit_valid_o || hit_ready_i). The
+// input may change while not taken (the core offers whichever finished ray
+// its arbiter picks); the output stream follows picorv32's rule (checked).
+`default_nettype none
+
+module rt_hit_out #(
+  parameter int unsigned E = 8,
+  parameter int unsigned M = 23,
+  parameter int unsigned RayIdWidth = 32,
+  parameter int unsigned PrimWidth = 24,
+  localparam int unsigned W = E + M + 1
+) (
+  input  logic                  clk_i,
+  input  logic                  rst_ni,
+  input  logic                  in_valid_i,
+  output logic                  in_ready_o,
+  input  logic [RayIdWidth-1:0] in_ray_id_i,
+  input  logic                  in_hit_i,
+  input  logic [PrimWidth-1:0]  in_prim_i,
+  input  logic [W-1:0]          in_t_i,
+  input  logic [W-1:0]          in_u_i,
+  input  logic [W-1:0]          in_v_i,
+  input  logic                  in_overflow_i,
+  output logic                  hit_valid_o,
+  input  logic                  hit_ready_i,
+  output logic [RayIdWidth-1:0] hit_ray_id_o,
+  output logic                  hit_o,
+  output logic [31:0]           hit_prim_o,
+  output logic [31:0]           hit_t_o,
+  output logic [31:0]           hit_u_o,
+  output logic [31:0]           hit_v_o,
+  output logic                  hit_overflow_o
+);
+
+  logic        in_fire;
+  logic [31:0] wide_t, wide_u, wide_v;
+  assign in_ready_o = !hit_valid_o || hit_ready_i;
+  assign in_fire = in_valid_i && in_ready_o;
+  fp_to_f32 #(.E(E), .M(M)) u_wide_t (.a_i(in_t_i), .f32_o(wide_t));
+  fp_to_f32 #(.E(E), .M(M)) u_wide_u (.a_i(in_u_i), .f32_o(wide_u));
+  fp_to_f32 #(.E(E), .M(M)) u_wide_v (.a_i(in_v_i), .f32_o(wide_v));
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      hit_valid_o <= 1'b0;
+    end else begin
+      if (hit_valid_o && hit_ready_i) hit_valid_o <= 1'b0;
+      if (in_fire) hit_valid_o <= 1'b1;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (in_fire) begin
+      hit_ray_id_o <= in_ray_id_i;
+      hit_o <= in_hit_i;
+      hit_prim_o <= in_hit_i ? 32'(in_prim_i) : 32'hFFFF_FFFF;
+      hit_t_o <= in_hit_i ? wide_t : 32'h7F80_0000;
+      hit_u_o <= in_hit_i ? wide_u : 32'h0;
+      hit_v_o <= in_hit_i ? wide_v : 32'h0;
+      hit_overflow_o <= in_overflow_i;
+    end
+  end
+
+  rt_stream_check #(.Width(RayIdWidth + 1 + 4 * 32 + 1), .Name("rt_hit_out")) u_out_check (
+    .clk_i, .rst_ni, .valid_i(hit_valid_o), .ready_i(hit_ready_i),
+    .payload_i({hit_ray_id_o, hit_o, hit_prim_o, hit_t_o, hit_u_o, hit_v_o, hit_overflow_o})
+  );
+
+endmodule
+
+`default_nettype wire

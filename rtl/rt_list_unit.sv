@@ -1,0 +1,93 @@
+// rt_list_unit: the leaf-list walker of rt_core.
+//
+// A leaf job (thread tag, first list entry, entry count > 0) waits in a FIFO
+// of Jobs entries; the walker takes the oldest job when it is idle and then
+// issues one list-cache request per cycle, one per entry, with the entry's
+// byte address (list_base_i + ListEntryBytes * entry) and the job's tag,
+// until all of the job's entries are requested. Both streams are valid/ready
+// with picorv32's rule.
+`default_nettype none
+
+module rt_list_unit #(
+  parameter int unsigned TagWidth = 4,
+  parameter int unsigned Jobs = 16,
+  parameter int unsigned CountWidth = 25,
+  parameter int unsigned AddrWidth = 28
+) (
+  input  logic                  clk_i,
+  input  logic                  rst_ni,
+  input  logic [AddrWidth-1:0]  list_base_i,  // stable while busy
+  // leaf jobs
+  input  logic                  job_valid_i,
+  output logic                  job_ready_o,
+  input  logic [TagWidth-1:0]   job_tag_i,
+  input  logic [31:0]           job_first_i,  // index of the first list entry
+  input  logic [CountWidth-1:0] job_count_i,  // entries, at least 1
+  // list entry requests
+  output logic                  req_valid_o,
+  input  logic                  req_ready_i,
+  output logic [TagWidth-1:0]   req_tag_o,
+  output logic [AddrWidth-1:0]  req_addr_o
+);
+
+  localparam int unsigned EntryShift = $clog2(kdrt_pkg::ListEntryBytes);
+
+  // ------------------------------------------------------------ job queue
+  logic                  queued_valid, queued_pop;
+  logic [TagWidth-1:0]   queued_tag;
+  logic [31:0]           queued_first;
+  logic [CountWidth-1:0] queued_count;
+  rt_fifo #(.Width(TagWidth + 32 + CountWidth), .Depth(Jobs)) u_jobs (
+    .clk_i, .rst_ni,
+    .in_valid_i (job_valid_i),
+    .in_ready_o (job_ready_o),
+    .in_data_i  ({job_tag_i, job_first_i, job_count_i}),
+    .out_valid_o(queued_valid),
+    .out_ready_i(!req_valid_o),
+    .out_data_o ({queued_tag, queued_first, queued_count})
+  );
+  assign queued_pop = queued_valid && !req_valid_o;
+
+  // ------------------------------------------------------------ walker
+  logic [CountWidth-1:0] left_q;  // entries still to request
+  logic                  req_fire;
+  assign req_fire = req_valid_o && req_ready_i;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      req_valid_o <= 1'b0;
+    end else if (queued_pop) begin
+      req_valid_o <= 1'b1;
+    end else if (req_fire && left_q == CountWidth'(1)) begin
+      req_valid_o <= 1'b0;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (queued_pop) begin
+      req_tag_o <= queued_tag;
+      req_addr_o <= list_base_i + (AddrWidth'(queued_first) << EntryShift);
+      left_q <= queued_count;
+    end else if (req_fire) begin
+      req_addr_o <= req_addr_o + AddrWidth'(kdrt_pkg::ListEntryBytes);
+      left_q <= left_q - 1'b1;
+    end
+  end
+
+  // Entry index bits above AddrWidth are unused.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic unused_bits;
+  assign unused_bits = ^queued_first;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  rt_stream_check #(.Width(TagWidth + 32 + CountWidth), .Name("rt_list_unit job")) u_job_check (
+    .clk_i, .rst_ni, .valid_i(job_valid_i), .ready_i(job_ready_o),
+    .payload_i({job_tag_i, job_first_i, job_count_i})
+  );
+  rt_stream_check #(.Width(TagWidth + AddrWidth), .Name("rt_list_unit request")) u_req_check (
+    .clk_i, .rst_ni, .valid_i(req_valid_o), .ready_i(req_ready_i), .payload_i({req_tag_o, req_addr_o})
+  );
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,160 @@
+// rt_mem_system: the core's memory side. Three non-blocking direct-mapped
+// caches (rtl/rt_cache.sv) share one memory port (rtl/rt_mem_arb.sv):
+//
+//   node port:  a byte address -> the node cache line holding it
+//   list port:  a list entry's byte address -> list cache -> the entry's
+//               triangle id -> triangle cache -> the triangle's record
+//
+// Responses come back out of order, each with its request's tag (the list
+// port's tag comes back on the triangle response, with the id). Streams are
+// valid/ready; all but the node request follow picorv32's rule (checked): a
+// node request may change or drop while not ready (the cache decides each
+// cycle). The memory tag is {cache (node 0, list 1, triangle 2), miss
+// register, beat}, zero-extended to 8 bits.
+`default_nettype none
+
+module rt_mem_system #(
+  parameter int unsigned AddrWidth = 28,
+  parameter int unsigned TagWidth = 4,
+  parameter int unsigned TriIdxWidth = 24,
+  parameter int unsigned NodeCacheLines = 64,
+  parameter int unsigned ListCacheLines = 64,
+  parameter int unsigned TriCacheLines = 64,
+  parameter int unsigned NodeLineBeats = 2,
+  parameter int unsigned ListLineBeats = 2,
+  parameter int unsigned CacheMshrs = 8,
+  localparam int unsigned TriBits = 8 * kdrt_pkg::TriangleBytes
+) (
+  input  logic                         clk_i,
+  input  logic                         rst_ni,
+  input  logic [AddrWidth-1:0]         tri_base_i,  // stable while busy
+  // node lines
+  input  logic                         node_req_valid_i,
+  output logic                         node_req_ready_o,
+  input  logic [TagWidth-1:0]          node_req_tag_i,
+  input  logic [AddrWidth-1:0]         node_req_addr_i,
+  output logic                         node_resp_valid_o,
+  input  logic                         node_resp_ready_i,
+  output logic [TagWidth-1:0]          node_resp_tag_o,
+  output logic [NodeLineBeats*128-1:0] node_resp_line_o,
+  // list entries, answered with their triangles
+  input  logic                         list_req_valid_i,
+  output logic                         list_req_ready_o,
+  input  logic [TagWidth-1:0]          list_req_tag_i,
+  input  logic [AddrWidth-1:0]         list_req_addr_i,
+  output logic                         tri_resp_valid_o,
+  input  logic                         tri_resp_ready_i,
+  output logic [TagWidth-1:0]          tri_resp_tag_o,
+  output logic [TriIdxWidth-1:0]       tri_resp_id_o,
+  output logic [TriBits-1:0]           tri_resp_o,
+  // memory
+  output logic                         mem_req_valid_o,
+  input  logic                         mem_req_ready_i,
+  output logic [AddrWidth-1:0]         mem_req_addr_o,
+  output logic [7:0]                   mem_req_tag_o,
+  input  logic                         mem_resp_valid_i,
+  input  logic [7:0]                   mem_resp_tag_i,
+  input  logic [127:0]                 mem_resp_data_i,
+  // events this cycle: node, list, triangle cache (bits 0, 1, 2)
+  output logic [2:0]                   hit_o,
+  output logic [2:0]                   miss_o,
+  output logic                         entry_fire_o,  // a list entry went on to the triangle cache
+  output logic                         mem_wait_o     // a cache waits for memory
+);
+
+  localparam int unsigned NodeOffW = $clog2(16 * NodeLineBeats);
+  localparam int unsigned ListOffW = $clog2(16 * ListLineBeats);
+  localparam int unsigned EntryShift = $clog2(kdrt_pkg::ListEntryBytes);
+  // A cache's memory id: {miss register, beat}.
+  localparam int unsigned MemIdW = ((CacheMshrs > 1) ? $clog2(CacheMshrs) : 1) + 2;
+
+  logic [2:0]           mem_valid, mem_ready, mem_resp_valid, filling;
+  logic [AddrWidth-1:0] node_mem_addr, list_mem_addr, tri_mem_addr;
+  logic [MemIdW-1:0]    node_mem_id, list_mem_id, tri_mem_id, mem_resp_id;
+  logic [127:0]         mem_resp_data;
+
+  rt_cache #(.Lines(NodeCacheLines), .LineBeats(NodeLineBeats), .KeyWidth(AddrWidth - NodeOffW),
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth), .Mshrs(CacheMshrs)) u_node_cache (
+    .clk_i, .rst_ni,
+    .req_valid_i(node_req_valid_i), .req_ready_o(node_req_ready_o),
+    .req_key_i(node_req_addr_i[AddrWidth-1:NodeOffW]),
+    .req_addr_i({node_req_addr_i[AddrWidth-1:NodeOffW], {NodeOffW{1'b0}}}), .req_tag_i(node_req_tag_i),
+    .resp_valid_o(node_resp_valid_o), .resp_ready_i(node_resp_ready_i), .resp_data_o(node_resp_line_o),
+    .resp_tag_o(node_resp_tag_o),
+    .mem_req_valid_o(mem_valid[0]), .mem_req_ready_i(mem_ready[0]), .mem_req_addr_o(node_mem_addr),
+    .mem_req_id_o(node_mem_id), .mem_resp_valid_i(mem_resp_valid[0]), .mem_resp_id_i(mem_resp_id),
+    .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[0]), .miss_o(miss_o[0]), .filling_o(filling[0])
+  );
+
+  // The list cache's tag carries the entry's offset in its line.
+  logic                         list_resp_valid, tri_req_ready;
+  logic [ListLineBeats*128-1:0] list_line;
+  logic [TagWidth-1:0]          entry_tag;
+  logic [ListOffW-1:0]          entry_off;
+  logic [TriIdxWidth-1:0]       entry_tri;
+  rt_cache #(.Lines(ListCacheLines), .LineBeats(ListLineBeats), .KeyWidth(AddrWidth - ListOffW),
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth + ListOffW), .Mshrs(CacheMshrs)) u_list_cache (
+    .clk_i, .rst_ni,
+    .req_valid_i(list_req_valid_i), .req_ready_o(list_req_ready_o),
+    .req_key_i(list_req_addr_i[AddrWidth-1:ListOffW]),
+    .req_addr_i({list_req_addr_i[AddrWidth-1:ListOffW], {ListOffW{1'b0}}}),
+    .req_tag_i({list_req_tag_i, list_req_addr_i[ListOffW-1:0]}),
+    .resp_valid_o(list_resp_valid), .resp_ready_i(tri_req_ready), .resp_data_o(list_line),
+    .resp_tag_o({entry_tag, entry_off}),
+    .mem_req_valid_o(mem_valid[1]), .mem_req_ready_i(mem_ready[1]), .mem_req_addr_o(list_mem_addr),
+    .mem_req_id_o(list_mem_id), .mem_resp_valid_i(mem_resp_valid[1]), .mem_resp_id_i(mem_resp_id),
+    .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[1]), .miss_o(miss_o[1]), .filling_o(filling[1])
+  );
+  assign entry_tri = TriIdxWidth'(list_line[8 * kdrt_pkg::ListEntryBytes * entry_off[ListOffW-1:EntryShift] +: 32]);
+  assign entry_fire_o = list_resp_valid && tri_req_ready;
+
+  // A triangle line is one record, named by the triangle id.
+  rt_cache #(.Lines(TriCacheLines), .LineBeats(kdrt_pkg::TriangleBytes / 16), .KeyWidth(TriIdxWidth),
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth + TriIdxWidth), .Mshrs(CacheMshrs)) u_tri_cache (
+    .clk_i, .rst_ni,
+    .req_valid_i(list_resp_valid), .req_ready_o(tri_req_ready), .req_key_i(entry_tri),
+    .req_addr_i(tri_base_i + AddrWidth'(entry_tri) * AddrWidth'(kdrt_pkg::TriangleBytes)),
+    .req_tag_i({entry_tag, entry_tri}),
+    .resp_valid_o(tri_resp_valid_o), .resp_ready_i(tri_resp_ready_i), .resp_data_o(tri_resp_o),
+    .resp_tag_o({tri_resp_tag_o, tri_resp_id_o}),
+    .mem_req_valid_o(mem_valid[2]), .mem_req_ready_i(mem_ready[2]), .mem_req_addr_o(tri_mem_addr),
+    .mem_req_id_o(tri_mem_id), .mem_resp_valid_i(mem_resp_valid[2]), .mem_resp_id_i(mem_resp_id),
+    .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[2]), .miss_o(miss_o[2]), .filling_o(filling[2])
+  );
+
+  rt_mem_arb #(.N(3), .AddrWidth(AddrWidth), .IdW(MemIdW)) u_mem_arb (
+    .clk_i, .rst_ni,
+    .req_valid_i(mem_valid), .req_ready_o(mem_ready),
+    .req_addr_i({tri_mem_addr, list_mem_addr, node_mem_addr}), .req_id_i({tri_mem_id, list_mem_id, node_mem_id}),
+    .resp_valid_o(mem_resp_valid), .resp_id_o(mem_resp_id), .resp_data_o(mem_resp_data),
+    .mem_req_valid_o, .mem_req_ready_i, .mem_req_addr_o, .mem_req_tag_o,
+    .mem_resp_valid_i, .mem_resp_tag_i, .mem_resp_data_i
+  );
+  assign mem_wait_o = (|mem_valid) || (|filling);
+
+  rt_stream_check #(.Width(AddrWidth + 8), .Name("rt_mem_system memory request")) u_mem_check (
+    .clk_i, .rst_ni, .valid_i(mem_req_valid_o), .ready_i(mem_req_ready_i), .payload_i({mem_req_addr_o, mem_req_tag_o})
+  );
+  rt_stream_check #(.Width(TagWidth + AddrWidth), .Name("rt_mem_system list request")) u_list_check (
+    .clk_i, .rst_ni, .valid_i(list_req_valid_i), .ready_i(list_req_ready_o),
+    .payload_i({list_req_tag_i, list_req_addr_i})
+  );
+  rt_stream_check #(.Width(TagWidth + NodeLineBeats * 128), .Name("rt_mem_system node response")) u_node_check (
+    .clk_i, .rst_ni, .valid_i(node_resp_valid_o), .ready_i(node_resp_ready_i),
+    .payload_i({node_resp_tag_o, node_resp_line_o})
+  );
+  rt_stream_check #(.Width(TagWidth + TriIdxWidth + TriBits), .Name("rt_mem_system triangle response")) u_tri_check (
+    .clk_i, .rst_ni, .valid_i(tri_resp_valid_o), .ready_i(tri_resp_ready_i),
+    .payload_i({tri_resp_tag_o, tri_resp_id_o, tri_resp_o})
+  );
+
+  // Entry bits above TriIdxWidth (zero for a scene the parameters fit), the
+  // line's other entries and the node address bits within a line are unused.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic unused_bits;
+  assign unused_bits = ^{list_line, entry_off, node_req_addr_i};
+  /* verilator lint_on UNUSEDSIGNAL */
+
+endmodule
+
+`default_nettype wire
