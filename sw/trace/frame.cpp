@@ -35,7 +35,7 @@ Frame ChooseFrame(const Scene& world) {
   if (reach > 0.0) {
     int e = 0;
     std::frexp(reach, &e);  // reach = m * 2^e, m in [0.5, 1)
-    f.scale_log2 = std::clamp<int32_t>(-e, -kMaxFrameScaleLog2, kMaxFrameScaleLog2);
+    f.scale_log2 = std::clamp<int32_t>(kFrameReachLog2 - e, -kMaxFrameScaleLog2, kMaxFrameScaleLog2);
   }
   return f;
 }
