@@ -39,6 +39,14 @@ package kdrt_pkg;
   localparam int unsigned HdrFrameScale   = 84;  // int32: log2 of the frame's scale
   localparam int unsigned HdrReserved     = 88;  // 10 zero words
 
+  // The frame's scale s (HdrFrameScale) as the core takes it: signed, and a
+  // valid image has |s| <= 160 (kMaxFrameScaleLog2, sw/trace/frame.h), so 9
+  // bits hold it. A ray's distance scale k = m - s (docs/dataflow.md, step 0)
+  // has m = 127 - (a biased exponent) in [-128, 127], so |k| <= 128 + 256 =
+  // 384 for any 9-bit s: 10 bits hold it (and -k).
+  localparam int unsigned FrameScaleWidth = 9;
+  localparam int unsigned TScaleWidth     = 10;
+
   // Node word 1, bits [1:0]: split axis 0/1/2 or NodeLeaf; bits [31:2]: the
   // above child's index (inner node) or the triangle count (leaf).
   // Inner node word 0: split position (fp32); leaf word 0: first list entry.
