@@ -53,8 +53,9 @@ int main(int argc, char** argv) {
   for (const std::string& name : Split(scenes)) {
     for (const std::string& size_text : Split(sizes)) {
       const Scene scene = GenerateScene(name, std::stoi(size_text));
-      const KdTree tree = BuildKdTree(scene);
-      const std::vector<uint8_t> bytes = BuildMemoryImage(scene, tree);
+      const FramedImage framed = BuildFramedImage(scene, BuildOptions{});
+      const KdTree& tree = framed.tree;
+      const std::vector<uint8_t>& bytes = framed.bytes;
       const ImageView image(bytes);
       const EmbreeScene embree(scene, 1, /*robust=*/false);
 

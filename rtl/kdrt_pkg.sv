@@ -1,4 +1,4 @@
-// Constants of the kdrt memory image, version 1: a mirror of
+// Constants of the kdrt memory image, version 2: a mirror of
 // sw/common/image_format.h (the C++ header is the source of truth, and
 // docs/memory-image.md its prose). Every value is little-endian in memory;
 // offsets are in bytes. Also the types shared by the core's units: the
@@ -10,7 +10,7 @@ package kdrt_pkg;
   // A unit uses only some of these.
   /* verilator lint_off UNUSEDPARAM */
 
-  localparam int unsigned ImgVersion      = 1;
+  localparam int unsigned ImgVersion      = 2;
   localparam int unsigned HeaderBytes     = 128;
   localparam int unsigned SectionAlign    = 64;
   localparam int unsigned NodeBytes       = 8;
@@ -35,7 +35,17 @@ package kdrt_pkg;
   localparam int unsigned HdrMaxLeafPrims = 44;
   localparam int unsigned HdrBoundsMin    = 48;  // 3 x fp32: x, y, z
   localparam int unsigned HdrBoundsMax    = 60;
-  localparam int unsigned HdrReserved     = 72;  // 14 zero words
+  localparam int unsigned HdrFrameOrigin  = 72;  // 3 x fp32 (sw/trace/frame.h)
+  localparam int unsigned HdrFrameScale   = 84;  // int32: log2 of the frame's scale
+  localparam int unsigned HdrReserved     = 88;  // 10 zero words
+
+  // The frame's scale s (HdrFrameScale) as the core takes it: signed, and a
+  // valid image has |s| <= 160 (kMaxFrameScaleLog2, sw/trace/frame.h), so 9
+  // bits hold it. A ray's distance scale k = m - s (docs/dataflow.md, step 0)
+  // has m = 127 - (a biased exponent) in [-128, 127], so |k| <= 128 + 256 =
+  // 384 for any 9-bit s: 10 bits hold it (and -k).
+  localparam int unsigned FrameScaleWidth = 9;
+  localparam int unsigned TScaleWidth     = 10;
 
   // Node word 1, bits [1:0]: split axis 0/1/2 or NodeLeaf; bits [31:2]: the
   // above child's index (inner node) or the triangle count (leaf).

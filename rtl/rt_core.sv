@@ -6,12 +6,12 @@
 // thread may use, each taking one request per cycle, so while some threads
 // wait for memory others keep the units busy (SaarCOR, the T&I engine):
 //
-//   ray in -> rt_ray_setup -> rt_clip_unit -> FETCH
+//   ray in -> rt_ray_setup (into the image's frame) -> rt_clip_unit -> FETCH
 //   FETCH -> node cache -> WAIT_NODE -> inner: rt_trav_unit -> FETCH (push/descend)
 //                                    -> leaf:  rt_list_unit -> LEAF -> EXIT
 //   rt_list_unit -> list cache -> triangle cache -> rt_isect_unit -> closest-hit merge
 //   EXIT (leaf done): finished, or pop the stack -> FETCH
-//   DONE -> hit out -> FREE
+//   DONE -> hit out (t back to world units) -> FREE
 //
 // The caches and the memory port are rt_mem_system. The operations and
 // decisions are exactly the model's (sw/trace/traversal.h, docs/dataflow.md),
@@ -45,6 +45,10 @@ module rt_core #(
   // configuration (image header), stable while busy
   input  logic [AddrWidth-1:0]  node_base_i, list_base_i, tri_base_i,
   input  logic [95:0]           bounds_min_i, bounds_max_i,
+  // the image's frame (docs/dataflow.md step 0): origin as fp32 bits, x in
+  // [31:0], and the signed log2 scale, |s| <= 160; rays and hits are in world units
+  input  logic [95:0]           frame_origin_i,
+  input  logic signed [kdrt_pkg::FrameScaleWidth-1:0] frame_scale_i,
   // rays in
   input  logic                  ray_valid_i,
   output logic                  ray_ready_o,
@@ -71,6 +75,7 @@ module rt_core #(
 );
 
   localparam int unsigned CountW = TriIdxWidth + 1;
+  localparam int unsigned KW = kdrt_pkg::TScaleWidth;
   localparam int unsigned NodeShift = $clog2(kdrt_pkg::NodeBytes);
   localparam int unsigned NodeOffW = $clog2(16 * NodeLineBeats);
 
@@ -85,6 +90,7 @@ module rt_core #(
   logic [3*W-1:0]          shear_q [Threads];  // sx, sy, sz
   logic [5:0]              axes_q [Threads];   // kz, ky, kx (2 bits each)
   logic [W-1:0]            tmin_q [Threads], t0_q [Threads], t1_q [Threads], leaf_tmax_q [Threads];
+  logic signed [KW-1:0]    t_scale_q [Threads];  // k: world t = framed t * 2^k
   logic [NodeIdxWidth-1:0] node_q [Threads];
   logic [Threads-1:0]      hit_q, ovf_q;       // hit something, stack overflowed
   logic [W-1:0]            best_t_q [Threads], best_u_q [Threads], best_v_q [Threads];
@@ -111,12 +117,15 @@ module rt_core #(
 
   logic           setup_valid, clip_in_ready, setup_fire;
   logic [ThW-1:0] setup_tag;
+  logic signed [KW-1:0] setup_t_scale;
   logic [3*W-1:0] setup_o, setup_d, setup_inv;
   logic [W-1:0]   setup_tmin, setup_tmax, setup_sx, setup_sy, setup_sz;
   logic [1:0]     setup_kx, setup_ky, setup_kz;
   rt_ray_setup #(.E(E), .M(M), .TagWidth(ThW)) u_setup (
     .clk_i, .rst_ni, .in_valid_i(ray_fire), .in_ready_o(setup_in_ready), .in_tag_i(alloc_idx), .in_ray_i(ray_i),
-    .out_valid_o(setup_valid), .out_ready_i(clip_in_ready), .out_tag_o(setup_tag), .out_o_o(setup_o),
+    .frame_origin_i, .frame_scale_i,
+    .out_valid_o(setup_valid), .out_ready_i(clip_in_ready), .out_tag_o(setup_tag),
+    .out_t_scale_o(setup_t_scale), .out_o_o(setup_o),
     .out_d_o(setup_d), .out_inv_o(setup_inv), .out_tmin_o(setup_tmin), .out_tmax_o(setup_tmax),
     .out_kx_o(setup_kx), .out_ky_o(setup_ky), .out_kz_o(setup_kz),
     .out_sx_o(setup_sx), .out_sy_o(setup_sy), .out_sz_o(setup_sz)
@@ -268,7 +277,8 @@ module rt_core #(
   rt_hit_out #(.E(E), .M(M), .RayIdWidth(RayIdWidth), .PrimWidth(TriIdxWidth)) u_hit_out (
     .clk_i, .rst_ni, .in_valid_i(out_valid), .in_ready_o(out_ready), .in_ray_id_i(ray_id_q[out_idx]),
     .in_hit_i(hit_q[out_idx]), .in_prim_i(best_prim_q[out_idx]), .in_t_i(best_t_q[out_idx]),
-    .in_u_i(best_u_q[out_idx]), .in_v_i(best_v_q[out_idx]), .in_overflow_i(ovf_q[out_idx]),
+    .in_t_scale_i(t_scale_q[out_idx]), .in_u_i(best_u_q[out_idx]), .in_v_i(best_v_q[out_idx]),
+    .in_overflow_i(ovf_q[out_idx]),
     .hit_valid_o, .hit_ready_i, .hit_ray_id_o, .hit_o, .hit_prim_o, .hit_t_o, .hit_u_o, .hit_v_o, .hit_overflow_o
   );
 
@@ -316,6 +326,7 @@ module rt_core #(
         SSetup: begin
           if (on_setup[t]) begin
             {o_q[t], d_q[t], inv_q[t], tmin_q[t]} <= {setup_o, setup_d, setup_inv, setup_tmin};
+            t_scale_q[t] <= setup_t_scale;
             {shear_q[t], axes_q[t]} <= {setup_sz, setup_sy, setup_sx, setup_kz, setup_ky, setup_kx};
             {best_t_q[t], best_u_q[t], best_v_q[t], best_prim_q[t]} <= {setup_tmax, {2 * W{1'b0}}, {TriIdxWidth{1'b1}}};
             {hit_q[t], ovf_q[t], node_q[t], remaining_q[t], outstanding_q[t]} <= '0;

@@ -1,10 +1,15 @@
 // rt_hit_out: rt_core's hit record register. It takes a finished ray's
-// closest hit in the datapath format (E, M) and holds its record, widened to
-// fp32 bits, until hit_ready_i: on a hit the triangle id and t, u, v; on a
-// miss id 0xFFFFFFFF, t = +inf and u = v = 0. A new record is taken in the
-// cycle the held one leaves (in_ready_o = !hit_valid_o || hit_ready_i). The
-// input may change while not taken (the core offers whichever finished ray
-// its arbiter picks); the output stream follows picorv32's rule (checked).
+// closest hit in the datapath format (E, M) and holds its record in fp32 bits
+// until hit_ready_i: on a hit the triangle id, t in world units and u, v; on
+// a miss id 0xFFFFFFFF, t = +inf and u = v = 0. t, u, v are widened exactly to
+// fp32 (fp_to_f32); t then goes back from the image's frame to world units,
+// t = ldexp(t, k) in fp32 (fp_ldexp) with the ray's distance scale k from
+// rt_ray_setup, exactly the model's DistanceToWorld (sw/trace/frame.h,
+// docs/dataflow.md step 0): exact unless it leaves fp32's normal range
+// (then a signed zero or an infinity). A new record is taken in the cycle
+// the held one leaves (in_ready_o = !hit_valid_o || hit_ready_i). The input
+// may change while not taken (the core offers whichever finished ray its
+// arbiter picks); the output stream follows picorv32's rule (checked).
 `default_nettype none
 
 module rt_hit_out #(
@@ -21,7 +26,8 @@ module rt_hit_out #(
   input  logic [RayIdWidth-1:0] in_ray_id_i,
   input  logic                  in_hit_i,
   input  logic [PrimWidth-1:0]  in_prim_i,
-  input  logic [W-1:0]          in_t_i,
+  input  logic [W-1:0]          in_t_i,      // along the framed ray
+  input  logic signed [kdrt_pkg::TScaleWidth-1:0] in_t_scale_i,  // k: world t = t * 2^k
   input  logic [W-1:0]          in_u_i,
   input  logic [W-1:0]          in_v_i,
   input  logic                  in_overflow_i,
@@ -37,10 +43,13 @@ module rt_hit_out #(
 );
 
   logic        in_fire;
-  logic [31:0] wide_t, wide_u, wide_v;
+  logic [31:0] wide_t, world_t, wide_u, wide_v;
   assign in_ready_o = !hit_valid_o || hit_ready_i;
   assign in_fire = in_valid_i && in_ready_o;
   fp_to_f32 #(.E(E), .M(M)) u_wide_t (.a_i(in_t_i), .f32_o(wide_t));
+  fp_ldexp #(.E(8), .M(23), .NW(kdrt_pkg::TScaleWidth)) u_world_t (
+    .a_i(wide_t), .n_i(in_t_scale_i), .y_o(world_t)
+  );
   fp_to_f32 #(.E(E), .M(M)) u_wide_u (.a_i(in_u_i), .f32_o(wide_u));
   fp_to_f32 #(.E(E), .M(M)) u_wide_v (.a_i(in_v_i), .f32_o(wide_v));
 
@@ -58,7 +67,7 @@ module rt_hit_out #(
       hit_ray_id_o <= in_ray_id_i;
       hit_o <= in_hit_i;
       hit_prim_o <= in_hit_i ? 32'(in_prim_i) : 32'hFFFF_FFFF;
-      hit_t_o <= in_hit_i ? wide_t : 32'h7F80_0000;
+      hit_t_o <= in_hit_i ? world_t : 32'h7F80_0000;
       hit_u_o <= in_hit_i ? wide_u : 32'h0;
       hit_v_o <= in_hit_i ? wide_v : 32'h0;
       hit_overflow_o <= in_overflow_i;

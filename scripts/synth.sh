@@ -15,7 +15,7 @@ OUT_MD="$ROOT/docs/synth-table.md"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 
-UNITS=(fp_add fp_mul fp_div fp_cmp fp_from_f32 fp_to_f32 fp_nudge rt_trav_unit rt_clip_unit
+UNITS=(fp_add fp_mul fp_div fp_cmp fp_from_f32 fp_to_f32 fp_nudge fp_ldexp rt_trav_unit rt_clip_unit
        rt_ray_setup rt_isect_unit rt_hit_out)
 # Units without E and M: one row each, default parameters.
 PLAIN_UNITS=(rt_fifo rt_list_unit rt_thread_stack rt_mem_system)
@@ -68,9 +68,10 @@ latency() {  # documented latency of <unit> for mantissa bits <m>
     fp_from_f32) echo 1 ;;
     fp_to_f32) echo 0 ;;
     fp_nudge) echo 0 ;;
+    fp_ldexp) echo 0 ;;
     rt_trav_unit) echo 8 ;;
     rt_clip_unit) echo 11 ;;
-    rt_ray_setup) echo $(($2 + 6)) ;;
+    rt_ray_setup) echo $(($2 + 8)) ;;
     rt_isect_unit) echo $(($2 + 34)) ;;
     rt_hit_out) echo 1 ;;
     rt_fifo) echo 1 ;;

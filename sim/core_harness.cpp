@@ -10,6 +10,7 @@
 #include "Vrt_core.h"
 #include "fp/format.h"
 #include "sim/sim_ctrl.h"
+#include "trace/frame.h"
 #include "trace/hit_compare.h"
 
 namespace kdrt::sim {
@@ -43,6 +44,13 @@ void CoreHarness::Configure() {
   }
   SetWide(top_.bounds_min_i.data(), 3, lo);
   SetWide(top_.bounds_max_i.data(), 3, hi);
+  // The frame (docs/dataflow.md step 0). ImageView refuses |s| > 160, so s
+  // fits the port's kdrt_pkg::FrameScaleWidth = 9 bits (two's complement).
+  uint32_t origin[3];
+  for (int i = 0; i < 3; ++i) origin[i] = fp::BitsOf(h.frame_origin[i]);
+  SetWide(top_.frame_origin_i.data(), 3, origin);
+  static_assert(kMaxFrameScaleLog2 <= 255, "the frame scale must fit rt_core's 9-bit frame_scale_i");
+  top_.frame_scale_i = static_cast<uint32_t>(h.frame_scale_log2) & 0x1FFu;
   top_.ray_valid_i = 0;
   top_.hit_ready_i = 1;
   top_.mem_req_ready_i = 1;

@@ -1,4 +1,4 @@
-// The kdrt memory image, version 1: the bytes a hardware core reads.
+// The kdrt memory image, version 2: the bytes a hardware core reads.
 // docs/memory-image.md is the prose specification of this header; the RTL
 // package (rtl/kdrt_pkg.sv) mirrors the constants. Everything is little-endian,
 // every float is IEEE binary32, every section starts on a 64-byte boundary.
@@ -15,7 +15,7 @@
 namespace kdrt::img {
 
 inline constexpr char kMagic[8] = {'K', 'D', 'R', 'T', 'I', 'M', 'G', '\0'};
-inline constexpr uint32_t kVersion = 1;
+inline constexpr uint32_t kVersion = 2;
 inline constexpr uint32_t kHeaderBytes = 128;
 inline constexpr uint32_t kSectionAlign = 64;
 inline constexpr uint32_t kNodeBytes = 8;
@@ -34,9 +34,11 @@ struct Header {
   uint32_t tri_count;     // == number of scene triangles (file order)
   uint32_t max_depth;     // deepest node, root at depth 0
   uint32_t max_leaf_prims;// largest leaf list
-  float bounds_min[3];    // scene box the root cell spans
+  float bounds_min[3];    // scene box the root cell spans (in the frame)
   float bounds_max[3];
-  uint32_t reserved[14];  // zero
+  float frame_origin[3];  // world = framed * 2^-frame_scale_log2 + frame_origin
+  int32_t frame_scale_log2;
+  uint32_t reserved[10];  // zero
 };
 static_assert(sizeof(Header) == kHeaderBytes, "header layout");
 

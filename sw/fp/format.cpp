@@ -195,6 +195,12 @@ uint32_t NudgeDown(Format f, uint32_t x, uint32_t k) {
   return x < min_normal + k ? 0u : x - k;
 }
 
+uint32_t Ldexp(Format f, uint32_t x, int n) {
+  // Exact in double (|n| is bounded by the callers' exponent fields), then
+  // rounded once under the policy: only FTZ or overflow can change it.
+  return FromDouble(f, std::ldexp(ToDouble(f, x), n));
+}
+
 bool Lt(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) < ToDouble(f, b); }
 bool Le(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) <= ToDouble(f, b); }
 bool Eq(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) == ToDouble(f, b); }

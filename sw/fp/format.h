@@ -121,6 +121,10 @@ uint32_t Abs(Format f, uint32_t x);
 // encoding: no rounding involved.
 uint32_t NudgeUp(Format f, uint32_t x, uint32_t k);
 uint32_t NudgeDown(Format f, uint32_t x, uint32_t k);
+// x * 2^n: exact, except that a result below the normal range is a signed
+// zero (FTZ) and one above it an infinity; zeros, infinities stay, a NaN is
+// the canonical NaN. (A subnormal x is a zero: DAZ.) rtl/fp_ldexp.sv.
+uint32_t Ldexp(Format f, uint32_t x, int n);
 // IEEE comparisons: false when either operand is NaN; -0 == +0.
 bool Lt(Format f, uint32_t a, uint32_t b);
 bool Le(Format f, uint32_t a, uint32_t b);

@@ -45,8 +45,10 @@ PreparedScene PrepareScene(const SceneSpec& spec) {
 PreparedScene PrepareScene(Scene scene, const BuildOptions& build) {
   PreparedScene p;
   p.scene = std::move(scene);
-  p.tree = BuildKdTree(p.scene, build);
-  p.image = BuildMemoryImage(p.scene, p.tree);
+  FramedImage framed = BuildFramedImage(p.scene, build);
+  p.frame = framed.frame;
+  p.tree = std::move(framed.tree);
+  p.image = std::move(framed.bytes);
   return p;
 }
 

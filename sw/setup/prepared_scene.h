@@ -12,6 +12,7 @@
 
 #include "accel/kdtree.h"
 #include "scene/scene.h"
+#include "trace/frame.h"
 
 namespace kdrt {
 
@@ -22,8 +23,9 @@ struct SceneSpec {
 };
 
 struct PreparedScene {
-  Scene scene;
-  KdTree tree;
+  Scene scene;         // world coordinates: what the outputs show
+  Frame frame;         // the image's scene-relative frame
+  KdTree tree;         // built over the scene in the frame
   std::vector<uint8_t> image;
   double load_seconds = 0;
 };

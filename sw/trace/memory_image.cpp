@@ -13,7 +13,7 @@ uint64_t AlignUp(uint64_t x) { return (x + img::kSectionAlign - 1) / img::kSecti
 
 }  // namespace
 
-std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree) {
+std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, const Frame& frame) {
   img::Header h{};
   std::memcpy(h.magic, img::kMagic, sizeof(h.magic));
   h.version = img::kVersion;
@@ -38,7 +38,9 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree) {
   for (int i = 0; i < 3; ++i) {
     h.bounds_min[i] = tree.bounds_min[i];
     h.bounds_max[i] = tree.bounds_max[i];
+    h.frame_origin[i] = frame.origin[i];
   }
+  h.frame_scale_log2 = frame.scale_log2;
 
   std::vector<uint8_t> bytes(total, 0);
   std::memcpy(bytes.data(), &h, sizeof(h));
@@ -62,6 +64,22 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree) {
   return bytes;
 }
 
+FramedImage BuildFramedImage(const Scene& world, const BuildOptions& build) {
+  FramedImage out;
+  out.frame = ChooseFrame(world);
+  const Scene framed = ToFrame(world, out.frame);
+  out.tree = BuildKdTree(framed, build);
+  out.bytes = BuildMemoryImage(framed, out.tree, out.frame);
+  return out;
+}
+
+Frame ImageView::frame() const {
+  Frame f;
+  for (int i = 0; i < 3; ++i) f.origin[i] = header_->frame_origin[i];
+  f.scale_log2 = header_->frame_scale_log2;
+  return f;
+}
+
 ImageView::ImageView(const uint8_t* data, size_t size, const std::string& name)
     : data_(data), size_(size) {
   auto fail = [&](const std::string& what) { throw InputError(name, 0, what); };
@@ -83,6 +101,12 @@ ImageView::ImageView(const uint8_t* data, size_t size, const std::string& name)
   check_section(h.list_offset, h.list_count, img::kListEntryBytes, "leaf list");
   check_section(h.tri_offset, h.tri_count, img::kTriangleBytes, "triangle");
   if (h.node_count == 0) fail("no root node");
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(h.frame_origin[i])) fail("frame origin is not finite");
+  }
+  if (h.frame_scale_log2 < -kMaxFrameScaleLog2 || h.frame_scale_log2 > kMaxFrameScaleLog2) {
+    fail("frame scale 2^" + std::to_string(h.frame_scale_log2) + " out of range");
+  }
   nodes_ = reinterpret_cast<const img::Node*>(data + h.node_offset);
   lists_ = reinterpret_cast<const uint32_t*>(data + h.list_offset);
   tris_ = reinterpret_cast<const img::TriangleRecord*>(data + h.tri_offset);

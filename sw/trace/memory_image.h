@@ -10,15 +10,26 @@
 #include "accel/kdtree.h"
 #include "common/image_format.h"
 #include "scene/scene.h"
+#include "trace/frame.h"
 
 namespace kdrt {
 
 // Deepest tree an image may hold: the reference traversal's stack size.
 inline constexpr uint32_t kMaxImageDepth = 128;
 
-// Lays out the header, nodes, leaf lists and triangle records. Throws
+// Lays out the header, nodes, leaf lists and triangle records of a scene
+// already in its frame (trace/frame.h) and the tree built on it. Throws
 // InputError if the image would not fit 32-bit byte offsets.
-std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree);
+std::vector<uint8_t> BuildMemoryImage(const Scene& framed, const KdTree& tree, const Frame& frame);
+
+// The whole way from a scene in world coordinates: its frame, the scene in
+// the frame, the kd-tree built on that, the image.
+struct FramedImage {
+  Frame frame;
+  KdTree tree;  // over the framed scene
+  std::vector<uint8_t> bytes;
+};
+FramedImage BuildFramedImage(const Scene& world, const BuildOptions& build);
 
 // A validated, typed view of an image held elsewhere. Construction checks the
 // magic, version, section bounds and every node's child/list references, so a
@@ -33,6 +44,7 @@ class ImageView {
   const img::Node* nodes() const { return nodes_; }
   const uint32_t* lists() const { return lists_; }
   const img::TriangleRecord* triangles() const { return tris_; }
+  Frame frame() const;
   const uint8_t* data() const { return data_; }
   size_t size() const { return size_; }
 

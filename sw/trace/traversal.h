@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "common/ray.h"
+#include "trace/frame.h"
 #include "trace/intersect.h"
 #include "trace/memory_image.h"
 
@@ -28,8 +29,9 @@ inline constexpr int kMaxTraversalStack = kMaxImageDepth;
 
 template <class A>
 struct TraceResult {
-  typename A::T t, u, v;
+  typename A::T t, u, v;  // t along the framed ray
   uint32_t prim = kNoPrim;
+  int32_t t_scale_log2 = 0;  // world t = t * 2^t_scale_log2 (trace/frame.h)
 };
 
 // Cell intervals are conservative: every distance the traversal compares is
@@ -101,12 +103,13 @@ TraversalStep<A> StepInnerNode(const A& a, float split_fp32, typename A::T o, ty
   return s;
 }
 
-// Converts a datapath result to the fp32 hit record (exact widening).
+// Converts a datapath result to the fp32 hit record (exact widening), t in
+// the caller's units (an exact power-of-two scale, trace/frame.h).
 template <class A>
 Hit ToHit(const A& a, const TraceResult<A>& r) {
   Hit h;
   if (r.prim == kNoPrim) return h;
-  h.t = a.Store(r.t);
+  h.t = DistanceToWorld(a.Store(r.t), r.t_scale_log2);
   h.u = a.Store(r.u);
   h.v = a.Store(r.v);
   h.prim = r.prim;
@@ -118,8 +121,10 @@ template <class A>
 TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, IsectMethod isect,
                         RayCounters* counters = nullptr, std::vector<uint32_t>* path = nullptr) {
   using T = typename A::T;
-  const RaySetup<A> r = SetupRay(a, ray);
+  const FramedRay framed = ToFrame(ray, image.frame());
+  const RaySetup<A> r = SetupRay(a, framed.ray);
   TraceResult<A> best;
+  best.t_scale_log2 = framed.t_scale_log2;
   best.t = r.tmax;
   best.u = best.v = a.Zero();
 

@@ -1,11 +1,14 @@
 // Verilator bench of rtl/rt_hit_out.sv against a C++ model of the hit record
 // register, per preset, cycle by cycle: in_ready_o (the register is empty or
 // leaves this cycle), hit_valid_o, and the record: ray id, hit, overflow and,
-// on a hit, the triangle id and t, u, v widened to fp32 by the model's
-// fp::ToFloat; on a miss 0xFFFFFFFF, +inf, 0, 0. The offered record changes
-// at random while it is not taken (the core's arbiter may switch rays);
-// hit_ready_i is random in regimes. Values are random encodings of the
-// format, with zeros, infinities and NaNs mixed in.
+// on a hit, the triangle id, t widened to fp32 by the model's fp::ToFloat
+// and taken back to world units by DistanceToWorld (sw/trace/frame.h) with
+// the ray's distance scale k, and u, v widened; on a miss 0xFFFFFFFF, +inf,
+// 0, 0. The offered record changes at random while it is not taken (the
+// core's arbiter may switch rays); hit_ready_i is random in regimes. Values
+// are random encodings of the format, with zeros, infinities and NaNs mixed
+// in; k covers the whole range a ray can have (|k| <= 383) and beyond to the
+// port's limits.
 #include <array>
 #include <cstdio>
 
@@ -16,6 +19,7 @@
 #include "fp/format.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
+#include "trace/frame.h"
 
 namespace kdrt::rtlbench {
 namespace {
@@ -24,10 +28,20 @@ using fp::Format;
 using sim::SimCtrl;
 
 constexpr uint32_t kPrimMask = 0xFFFFFF;  // PrimWidth = 24, the default
+constexpr int kTScaleWidth = 10;          // kdrt_pkg::TScaleWidth
+
+int RandomTScale(Rng& rng) {
+  switch (rng.Below(4)) {
+    case 0: return static_cast<int>(rng.Below(41)) - 20;  // ordinary scenes
+    case 1: return static_cast<int>(rng.Below(1u << kTScaleWidth)) - (1 << (kTScaleWidth - 1));  // any 10-bit value
+    default: return static_cast<int>(rng.Below(767)) - 383;  // what a ray can have: |m - s| <= 383
+  }
+}
 
 struct Record {
   uint32_t ray_id = 0, prim = 0, t = 0, u = 0, v = 0;
   bool hit = false, overflow = false;
+  int t_scale = 0;  // input only
   bool operator==(const Record& o) const {
     return ray_id == o.ray_id && prim == o.prim && t == o.t && u == o.u && v == o.v && hit == o.hit &&
            overflow == o.overflow;
@@ -48,7 +62,7 @@ uint32_t RandomValue(Format f, Rng& rng) {
 Record Widen(Format f, const Record& in) {
   Record r = in;
   r.prim = in.hit ? in.prim : 0xFFFFFFFFu;
-  r.t = in.hit ? fp::BitsOf(fp::ToFloat(f, in.t)) : 0x7F800000u;
+  r.t = in.hit ? fp::BitsOf(DistanceToWorld(fp::ToFloat(f, in.t), in.t_scale)) : 0x7F800000u;
   r.u = in.hit ? fp::BitsOf(fp::ToFloat(f, in.u)) : 0u;
   r.v = in.hit ? fp::BitsOf(fp::ToFloat(f, in.v)) : 0u;
   return r;
@@ -75,13 +89,14 @@ bool Run(Format f, uint64_t cycles) {
     if (!offering || rng.Chance(0.2)) {  // a new offer, or the offer changes while not taken
       offering = rng.Chance(p_offer);
       offer = Record{rng.Bits32(), rng.Bits32() & kPrimMask, RandomValue(f, rng), RandomValue(f, rng),
-                     RandomValue(f, rng), rng.Chance(0.6), rng.Chance(0.05)};
+                     RandomValue(f, rng), rng.Chance(0.6), rng.Chance(0.05), RandomTScale(rng)};
     }
     dut.in_valid_i = offering;
     dut.in_ray_id_i = offer.ray_id;
     dut.in_hit_i = offer.hit;
     dut.in_prim_i = offer.prim;
     dut.in_t_i = offer.t;
+    dut.in_t_scale_i = static_cast<uint32_t>(offer.t_scale) & ((1u << kTScaleWidth) - 1);
     dut.in_u_i = offer.u;
     dut.in_v_i = offer.v;
     dut.in_overflow_i = offer.overflow;
@@ -95,8 +110,8 @@ bool Run(Format f, uint64_t cycles) {
       std::printf("rt_hit_out %s: FAIL at cycle %llu: in_ready %d (model %d), hit_valid %d (model %d)\n",
                   f.Name().c_str(), static_cast<unsigned long long>(cycle), dut.in_ready_o, ready,
                   dut.hit_valid_o, held);
-      std::printf("  model: id %u hit %d prim 0x%08x t 0x%08x u 0x%08x v 0x%08x ovf %d\n", reg.ray_id, reg.hit,
-                  reg.prim, reg.t, reg.u, reg.v, reg.overflow);
+      std::printf("  model: id %u hit %d prim 0x%08x t 0x%08x (k %d) u 0x%08x v 0x%08x ovf %d\n", reg.ray_id,
+                  reg.hit, reg.prim, reg.t, reg.t_scale, reg.u, reg.v, reg.overflow);
       std::printf("  rtl:   id %u hit %d prim 0x%08x t 0x%08x u 0x%08x v 0x%08x ovf %d\n", got.ray_id, got.hit,
                   got.prim, got.t, got.u, got.v, got.overflow);
       return false;

@@ -1,9 +1,14 @@
-// Verilator bench of rtl/rt_ray_setup.sv against the model's SetupRay on
-// SoftArith (sw/trace/intersect.h), per preset. Every output is checked (o,
-// d, 1/d, tmin, tmax, kx, ky, kz, sx, sy, sz, tag), with random input bubbles
-// and output backpressure; the first mismatch stops the run. Cases: every
-// direction whose components come from a set of ties, signed zeros and
-// special values, then random rays (1e6 per preset, 1e7 with KDRT_LONG=1).
+// Verilator bench of rtl/rt_ray_setup.sv against the model, per preset: the
+// world ray mapped into the image's frame (ToFrame, sw/trace/frame.h) and
+// then SetupRay on SoftArith (sw/trace/intersect.h). Every output is checked
+// (the distance scale k, o, d, 1/d, tmin, tmax, kx, ky, kz, sx, sy, sz, tag),
+// with random input bubbles and output backpressure; the first mismatch stops
+// the run. The frame is part of each input (the unit samples it with the
+// ray), so every ray has its own: origins from 0 to 1e30, scales over the
+// whole range -160..160. Cases: every direction whose components come from a
+// set of ties, signed zeros and special values, in four frames; then random
+// rays (1e6 per preset, 1e7 with KDRT_LONG=1), with direction components
+// of any magnitude (subnormal to fp32's largest, mixed within one ray).
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -17,6 +22,7 @@
 #include "Vrt_ray_setup_fp32.h"
 #include "tests/rtl/isect_bench_util.h"
 #include "tests/rtl/stream_bench.h"
+#include "trace/frame.h"
 #include "trace/intersect.h"
 
 namespace kdrt::rtlbench {
@@ -27,22 +33,28 @@ using fp::SoftArith;
 
 constexpr uint32_t kTagMask = 0xFF;
 
-// docs/isect-unit.md: load 1, compare 1, divide M + 4.
-unsigned DocumentedLatency(Format f) { return 6 + static_cast<unsigned>(f.m); }
+// docs/isect-unit.md: frame 2, load 1, compare 1, divide M + 4.
+unsigned DocumentedLatency(Format f) { return 8 + static_cast<unsigned>(f.m); }
+
+constexpr int kScaleWidth = 9;    // kdrt_pkg::FrameScaleWidth
+constexpr int kTScaleWidth = 10;  // kdrt_pkg::TScaleWidth
 
 // The unit's outputs in one comparable record.
 struct Out {
   std::array<uint32_t, 14> v{};  // o[3], d[3], inv[3], tmin, tmax, sx, sy, sz
   int kx = 0, ky = 0, kz = 0;
+  int t_scale = 0;
   uint32_t tag = 0;
   bool operator==(const Out& o) const {
-    return v == o.v && kx == o.kx && ky == o.ky && kz == o.kz && tag == o.tag;
+    return v == o.v && kx == o.kx && ky == o.ky && kz == o.kz && t_scale == o.t_scale && tag == o.tag;
   }
 };
 
-Out Model(const SoftArith& a, const Ray& ray) {
-  const RaySetup<SoftArith> r = SetupRay(a, ray);
+Out Model(const SoftArith& a, const Ray& world, const Frame& frame) {
+  const FramedRay framed = ToFrame(world, frame);
+  const RaySetup<SoftArith> r = SetupRay(a, framed.ray);
   Out o;
+  o.t_scale = framed.t_scale_log2;
   for (int i = 0; i < 3; ++i) {
     o.v[i] = r.o[i];
     o.v[3 + i] = r.d[i];
@@ -65,6 +77,7 @@ std::string OutString(Format f, const Out& o) {
   std::string s;
   for (int i = 0; i < 14; ++i) s += std::string(i % 3 == 0 ? "\n    " : "  ") + kNames[i] + " " + Fmt(f, o.v[i]);
   s += "\n    kx " + std::to_string(o.kx) + " ky " + std::to_string(o.ky) + " kz " + std::to_string(o.kz);
+  s += "  k " + std::to_string(o.t_scale);
   return s;
 }
 
@@ -88,19 +101,55 @@ std::vector<Ray> DirectedRays() {
   return rays;
 }
 
-Ray RandomRay(Rng& rng) {
+// The frames of the directed rays: the identity, a far offset, and both
+// ends of the scale range.
+std::vector<Frame> DirectedFrames() {
+  return {Frame{{0.0f, 0.0f, 0.0f}, 0}, Frame{{1e7f, -3.0f, 0.5f}, -20}, Frame{{1e-30f, -2e-30f, 0.0f}, 160},
+          Frame{{1e30f, 5e29f, -1e30f}, -160}};
+}
+
+Frame RandomFrame(Rng& rng) {
+  Frame f;
+  const double scale = std::pow(10.0, rng.Uniform(-30, 30));
+  for (int i = 0; i < 3; ++i) f.origin[i] = rng.Chance(0.1) ? 0.0f : static_cast<float>(rng.Gauss() * scale);
+  switch (rng.Below(4)) {
+    case 0: f.scale_log2 = rng.Chance(0.5) ? kMaxFrameScaleLog2 : -kMaxFrameScaleLog2; break;
+    case 1: f.scale_log2 = static_cast<int32_t>(rng.Below(21)) - 10; break;
+    default: f.scale_log2 = static_cast<int32_t>(rng.Below(2 * kMaxFrameScaleLog2 + 1)) - kMaxFrameScaleLog2;
+  }
+  return f;
+}
+
+// A world ray near the frame (offsets and lengths of the frame's size, 2^-s,
+// or of any size), with extreme direction magnitudes mixed in.
+Ray RandomRay(Rng& rng, const Frame& frame) {
   Ray r;
-  const double scale = std::pow(10.0, rng.Uniform(-3, 3));
+  const double frame_size = std::ldexp(1.0, -frame.scale_log2);
+  const double scale = rng.Chance(0.5) ? frame_size * std::pow(10.0, rng.Uniform(-3, 3))
+                                       : std::pow(10.0, rng.Uniform(-38, 38));
+  const bool near = rng.Chance(0.7);
   for (int i = 0; i < 3; ++i) {
-    r.o[i] = static_cast<float>(rng.Gauss() * scale);
+    r.o[i] = static_cast<float>((near ? frame.origin[i] : 0.0) + rng.Gauss() * scale);
     r.d[i] = static_cast<float>(rng.Gauss() * std::pow(10.0, rng.Uniform(-2, 2)));
+  }
+  switch (rng.Below(4)) {
+    case 0: {  // the whole direction scaled by 2^-160 .. 2^160 (FTZ and overflow included)
+      const int e = static_cast<int>(rng.Below(321)) - 160;
+      for (int i = 0; i < 3; ++i) r.d[i] = static_cast<float>(std::ldexp(static_cast<double>(r.d[i]), e));
+      break;
+    }
+    case 1:  // one component of any magnitude, the others unchanged
+      r.d[rng.Below(3)] = static_cast<float>(rng.Gauss() * std::ldexp(1.0, static_cast<int>(rng.Below(270)) - 140));
+      break;
+    default: break;
   }
   if (rng.Chance(0.1)) r.d[rng.Below(3)] = 0.0f;
   if (rng.Chance(0.05)) r.d[rng.Below(3)] = r.d[rng.Below(3)] * (rng.Chance(0.5) ? -1.0f : 1.0f);  // ties
   if (rng.Chance(0.02)) r.d[rng.Below(3)] = SpecialF32(rng);
   if (rng.Chance(0.02)) r.o[rng.Below(3)] = SpecialF32(rng);
-  r.tmin = rng.Chance(0.7) ? 0.0f : static_cast<float>(rng.LogUniform(1e-6, 1e6));
-  r.tmax = rng.Chance(0.6) ? INFINITY : r.tmin + static_cast<float>(rng.LogUniform(1e-6, 1e6));
+  const double t_scale = rng.Chance(0.2) ? std::pow(10.0, rng.Uniform(-30, 30)) : 1.0;
+  r.tmin = rng.Chance(0.7) ? 0.0f : static_cast<float>(rng.LogUniform(1e-6, 1e6) * t_scale);
+  r.tmax = rng.Chance(0.6) ? INFINITY : r.tmin + static_cast<float>(rng.LogUniform(1e-6, 1e6) * t_scale);
   if (rng.Chance(0.01)) r.tmin = SpecialF32(rng);
   if (rng.Chance(0.01)) r.tmax = SpecialF32(rng);
   return r;
@@ -108,6 +157,7 @@ Ray RandomRay(Rng& rng) {
 
 struct In {
   Ray ray;
+  Frame frame;
   uint32_t tag = 0;
 };
 
@@ -128,6 +178,8 @@ bool RunPreset(Format f, uint64_t random_count) {
     const Ray& r = in.ray;
     const float words[8] = {r.o[0], r.o[1], r.o[2], r.d[0], r.d[1], r.d[2], r.tmin, r.tmax};
     for (int j = 0; j < 8; ++j) PutBits(dut.in_ray_i, 32 * j, 32, fp::BitsOf(words[j]));
+    for (int i = 0; i < 3; ++i) PutBits(dut.frame_origin_i, 32 * i, 32, fp::BitsOf(in.frame.origin[i]));
+    dut.frame_scale_i = static_cast<uint32_t>(in.frame.scale_log2) & ((1u << kScaleWidth) - 1);
     dut.in_tag_i = in.tag;
   };
   unit.read = [w](const Dut& dut) {
@@ -145,22 +197,26 @@ bool RunPreset(Format f, uint64_t random_count) {
     o.kx = dut.out_kx_o;
     o.ky = dut.out_ky_o;
     o.kz = dut.out_kz_o;
+    o.t_scale = static_cast<int>(static_cast<uint32_t>(dut.out_t_scale_o) << (32 - kTScaleWidth)) >>
+                (32 - kTScaleWidth);
     o.tag = dut.out_tag_o;
     return o;
   };
   unit.model = [&](const In& in) {
-    Out o = Model(a, in.ray);
+    Out o = Model(a, in.ray, in.frame);
     o.tag = in.tag;
     return o;
   };
   unit.report = [&](const In& in, const Out& want, const Out& got, uint64_t index) {
-    std::printf("FAIL rt_ray_setup %s: first mismatch at ray %llu\n  %s\n  model (tag %u):%s\n  rtl (tag %u):%s\n",
-                f.Name().c_str(), static_cast<unsigned long long>(index), RayString(in.ray).c_str(), want.tag,
-                OutString(f, want).c_str(), got.tag, OutString(f, got).c_str());
+    std::printf("FAIL rt_ray_setup %s: first mismatch at ray %llu\n  %s\n  frame origin (%s, %s, %s) scale 2^%d\n"
+                "  model (tag %u):%s\n  rtl (tag %u):%s\n",
+                f.Name().c_str(), static_cast<unsigned long long>(index), RayString(in.ray).c_str(),
+                F32(in.frame.origin[0]).c_str(), F32(in.frame.origin[1]).c_str(), F32(in.frame.origin[2]).c_str(),
+                in.frame.scale_log2, want.tag, OutString(f, want).c_str(), got.tag, OutString(f, got).c_str());
   };
 
   // Latency on an idle pipe.
-  const unsigned latency = MeasureLatency(sim, unit, In{Ray{{0, 0, 0}, {1, 2, 3}, 0.0f, 1.0f}, 0});
+  const unsigned latency = MeasureLatency(sim, unit, In{Ray{{0, 0, 0}, {1, 2, 3}, 0.0f, 1.0f}, Frame{}, 0});
   std::printf("rt_ray_setup %s: latency %u cycles (documented %u)\n", f.Name().c_str(), latency,
               DocumentedLatency(f));
   if (latency != DocumentedLatency(f)) {
@@ -169,14 +225,23 @@ bool RunPreset(Format f, uint64_t random_count) {
     return false;
   }
 
-  const std::vector<Ray> directed = DirectedRays();
+  const std::vector<Ray> directed_rays = DirectedRays();
+  std::vector<In> directed;
+  for (const Frame& frame : DirectedFrames()) {
+    for (const Ray& ray : directed_rays) directed.push_back(In{ray, frame, 0});
+  }
   const uint64_t total = directed.size() + random_count;
   uint64_t issued = 0;
   uint32_t tag = 0;
   Rng stim(99);
   unit.next = [&](In& in) {
     if (issued >= total) return false;
-    in.ray = issued < directed.size() ? directed[issued] : RandomRay(stim);
+    if (issued < directed.size()) {
+      in = directed[issued];
+    } else {
+      in.frame = RandomFrame(stim);
+      in.ray = RandomRay(stim, in.frame);
+    }
     in.tag = tag;
     tag = (tag + 1) & kTagMask;
     ++issued;

@@ -1,13 +1,13 @@
 // `kdrt extremes --reduced --sim`: the numerics suite through the reference
 // tracer and the RTL core. The core must return the reference's records bit
-// for bit on every case in every preset; fp32 must leave no hole except
-// where the current world-space datapath is known to fail (listed below).
+// for bit on every case in every preset, and fp32 must leave no hole in any
+// case: with the scene-relative frame (docs/dataflow.md step 0) the scales
+// 1e-30 and 1e30 no longer under- or overflow the watertight test's products.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -18,10 +18,6 @@ namespace kdrt {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Products of the watertight test under- or overflow fp32 at these scales
-// until coordinates are scene-relative (issue "Numerics at the extremes").
-const std::set<std::string> kKnownFp32Failures = {"scale 1e-30", "scale 1e30"};
 
 TEST(Extremes, SimMatchesRenderAndFp32HasNoHoles) {
   const fs::path json = fs::temp_directory_path() / ("kdrt_extremes_" + std::to_string(getpid()) + ".json");
@@ -37,9 +33,7 @@ TEST(Extremes, SimMatchesRenderAndFp32HasNoHoles) {
     for (const auto& [format, cell] : c["formats"].items()) {
       EXPECT_EQ(cell["sim_mismatch"].get<int>(), 0) << name << " " << format << ": kdrt sim differs from render";
     }
-    if (!kKnownFp32Failures.count(name)) {
-      EXPECT_EQ(c["formats"]["fp32"]["holes"].get<int>(), 0) << name;
-    }
+    EXPECT_EQ(c["formats"]["fp32"]["holes"].get<int>(), 0) << name;
   }
 }
 

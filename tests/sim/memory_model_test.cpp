@@ -128,11 +128,11 @@ TEST(MemoryModel, RejectsBadConfigurations) {
 
 struct SceneImage {
   Scene scene;
-  KdTree tree;
-  std::vector<uint8_t> bytes;
+  FramedImage image;
+  const KdTree& tree = image.tree;
+  const std::vector<uint8_t>& bytes = image.bytes;
   explicit SceneImage(const std::string& name, int size)
-      : scene(GenerateScene(name, size)), tree(BuildKdTree(scene, BuildOptions{})),
-        bytes(BuildMemoryImage(scene, tree)) {}
+      : scene(GenerateScene(name, size)), image(BuildFramedImage(scene, BuildOptions{})) {}
 };
 
 TEST(SimConfig, RequirementsFollowTheImage) {

@@ -31,21 +31,24 @@ inline std::vector<Ray> CameraRays(const Scene& scene, int res) {
   return rays;
 }
 
-// A scene with its tree and image, kept together so views stay valid.
+// A scene with its image (and the tree over its framed copy), kept together
+// so views stay valid.
 struct Prepared {
   Scene scene;
-  KdTree tree;
-  std::vector<uint8_t> bytes;
+  FramedImage image;
+  std::vector<uint8_t>& bytes = image.bytes;
   explicit Prepared(Scene s, BuildOptions options = {})
-      : scene(std::move(s)), tree(BuildKdTree(scene, options)), bytes(BuildMemoryImage(scene, tree)) {}
-  ImageView view() const { return ImageView(bytes); }
+      : scene(std::move(s)), image(BuildFramedImage(scene, options)) {}
+  ImageView view() const { return ImageView(image.bytes); }
 };
 
 // Every triangle tested, same test and same closest-hit rule as the tree.
 template <class A>
 Hit BruteForce(const A& a, const ImageView& image, const Ray& ray) {
-  const RaySetup<A> r = SetupRay(a, ray);
+  const FramedRay framed = ToFrame(ray, image.frame());
+  const RaySetup<A> r = SetupRay(a, framed.ray);
   TraceResult<A> best;
+  best.t_scale_log2 = framed.t_scale_log2;
   best.t = r.tmax;
   for (uint32_t id = 0; id < image.header().tri_count; ++id) {
     const Candidate<A> c = IntersectWatertight(a, r, image.triangles()[id], r.tmax);
