@@ -119,7 +119,9 @@ void AddRayExponentCriteria(const ImageView& image, const std::vector<Ray>& rays
   const fp::NativeF64Arith a;
   const img::Header& h = image.header();
   for (size_t i = 0; i < rays.size(); ++i) {
-    const Ray& ray = rays[i];
+    // The datapath sees the ray in the image's frame (trace/frame.h): the
+    // magnitudes that matter are the framed ones.
+    const Ray ray = ToFrame(rays[i], image.frame()).ray;
     Need over, under;
     for (int k = 0; k < 3; ++k) over.Overflow(std::fabs(double{ray.o[k]}));
     over.Overflow(ray.tmin);

@@ -36,4 +36,17 @@ inline MeshAndRays MovedSphere(double offset, double scale) {
   return m;
 }
 
+// The unit sphere and its rays beside one large triangle `distance` away
+// ("a teapot in a stadium"): the image's frame spans the stadium, so the
+// sphere's detail is a few units of the last place of a narrow format and
+// its vertices collapse there. (An offset or a scale alone no longer breaks
+// any format: the frame removes it.)
+inline MeshAndRays SphereInStadium(double distance) {
+  MeshAndRays m = MovedSphere(0, 1);
+  const float d = static_cast<float>(distance);
+  m.scene.triangles.push_back({{d, -d, -d}, {d, d, -d}, {d, 0.0f, d}});
+  m.scene.material.push_back(0);
+  return m;
+}
+
 }  // namespace kdrt::testing

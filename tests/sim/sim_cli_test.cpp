@@ -249,11 +249,11 @@ TEST_F(SimCli, Fp64IsRefused) {
   EXPECT_EQ(FileCount(), 0u);
 }
 
-// The sphere of `kdrt rays` 1e5 from the origin (docs/precision.md): fp16
-// cannot hold it. The front end warns (stderr and JSON) and runs the model,
-// or with --strict refuses before building or running one.
+// The sphere of `kdrt rays` beside a triangle 1e5 away (docs/precision.md):
+// fp16 cannot hold it. The front end warns (stderr and JSON) and runs the
+// model, or with --strict refuses before building or running one.
 TEST_F(SimCli, FormatBelowTheRequirementWarnsOrWithStrictFails) {
-  const testing::MeshAndRays m = testing::MovedSphere(1e5, 1);
+  const testing::MeshAndRays m = testing::SphereInStadium(1e5);
   std::vector<Ray> some;  // every 64th: each walks the whole tree in fp16
   for (size_t i = 0; i < m.rays.size(); i += 64) some.push_back(m.rays[i]);
   WriteNff(m.scene, Path("far.nff"));
