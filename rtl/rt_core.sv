@@ -1,7 +1,7 @@
 // rt_core: one kdrt ray tracing core (docs/core-interface.md).
 //
 // Threads rays are in flight at once; each has a slot in the thread table
-// (ray, interval, closest hit) and a traversal stack (rt_thread_stack), and
+// (ray, interval, closest hit) and a traversal stack (in rt_leaf_exit), and
 // is in one of the states below. The units are shared pipelines that any
 // thread may use, each taking one request per cycle, so while some threads
 // wait for memory others keep the units busy (SaarCOR, the T&I engine):
@@ -18,7 +18,7 @@
 // so the hit records are bit-identical to `kdrt render --format` whatever the
 // memory latency and the interleaving of threads.
 `default_nettype none
-// Unused outputs of the shared fp_cmp are left open on purpose.
+// Unused outputs of the units are left open on purpose.
 /* verilator lint_off PINCONNECTEMPTY */
 
 module rt_core #(
@@ -186,28 +186,18 @@ module rt_core #(
   assign trav_overflow = trav_push && stack_full;
 
   // ------------------------------------------------------------ leaf exit and stack
-  logic                    exit_valid, exit_done, stack_empty, best_le_t1, best_lt_pop;
+  logic                    exit_valid, exit_done;
   logic [ThW-1:0]          exit_idx;
   logic [NodeIdxWidth-1:0] pop_node;
   logic [W-1:0]            pop_t0, pop_t1;
-  rt_rr_arb #(.N(Threads)) u_exit_arb (
-    .clk_i, .rst_ni, .req_i(is_exit), .ack_i(1'b1), .valid_o(exit_valid), .idx_o(exit_idx)
-  );
-  rt_thread_stack #(.Threads(Threads), .StackDepth(StackDepth), .Width(NodeIdxWidth + 2 * W)) u_stack (
+  rt_leaf_exit #(.E(E), .M(M), .Threads(Threads), .StackDepth(StackDepth), .NodeIdxWidth(NodeIdxWidth)) u_exit (
     .clk_i, .rst_ni, .clear_i(setup_fire), .clear_idx_i(setup_tag),
-    .push_i(trav_push), .push_idx_i(trav_tag), .push_data_i({trav_second, trav_ts_lo, trav_t1}),
-    .push_full_o(stack_full), .pop_i(exit_valid && !exit_done), .pop_idx_i(exit_idx),
-    .pop_empty_o(stack_empty), .top_o({pop_node, pop_t0, pop_t1})
+    .push_i(trav_push), .push_idx_i(trav_tag), .push_node_i(trav_second), .push_t0_i(trav_ts_lo),
+    .push_t1_i(trav_t1), .push_full_o(stack_full), .req_i(is_exit), .exit_valid_o(exit_valid),
+    .exit_idx_o(exit_idx), .exit_hit_i(hit_q[exit_idx]), .exit_best_t_i(best_t_q[exit_idx]),
+    .exit_t1_i(t1_q[exit_idx]), .exit_done_o(exit_done), .pop_node_o(pop_node), .pop_t0_o(pop_t0),
+    .pop_t1_o(pop_t1)
   );
-  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_exit (
-    .clk_i, .rst_ni, .en_i(1'b1), .valid_i(1'b1), .a_i(best_t_q[exit_idx]), .b_i(t1_q[exit_idx]),
-    .valid_o(), .lt_o(), .le_o(best_le_t1), .eq_o(), .min_o(), .max_o()
-  );
-  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_pop (
-    .clk_i, .rst_ni, .en_i(1'b1), .valid_i(1'b1), .a_i(best_t_q[exit_idx]), .b_i(pop_t0),
-    .valid_o(), .lt_o(best_lt_pop), .le_o(), .eq_o(), .min_o(), .max_o()
-  );
-  assign exit_done = (hit_q[exit_idx] && best_le_t1) || stack_empty || (hit_q[exit_idx] && best_lt_pop);
 
   // ------------------------------------------------------------ leaf lists, triangles, intersection
   // A leaf's job (at most one per thread, so the queue never fills: its ready is left open).

@@ -1,0 +1,81 @@
+// rt_leaf_exit: the per-thread traversal stacks and the leaf-exit decision of
+// rt_core (docs/core-interface.md).
+//
+// A thread whose leaf is done asks to exit (req_i); the round-robin arbiter
+// takes one a cycle (no backpressure). For the chosen thread exit_idx_o the
+// caller gives its closest hit and interval end, and exit_done_o is the rule
+// of TraceRay after a leaf (sw/trace/traversal.h):
+//   if hit and best.t <= t1: done; if the stack is empty: done;
+//   pop; if hit and best.t < popped t0: done
+// all in one cycle: the top entry is looked at before the pop, and the stack
+// is popped only when the thread goes on (exit_done_o low), to the popped
+// node with [pop_t0_o, pop_t1_o]. Stacks are cleared for a new ray (clear_i)
+// and pushed by traversal steps (push_i; push_full_o: the push is dropped,
+// the ray overflows), with rt_thread_stack's rules when events collide.
+`default_nettype none
+// Unused outputs of fp_cmp are left open on purpose.
+/* verilator lint_off PINCONNECTEMPTY */
+
+module rt_leaf_exit #(
+  parameter int unsigned E = 8,
+  parameter int unsigned M = 23,
+  parameter int unsigned Threads = 16,
+  parameter int unsigned StackDepth = 32,
+  parameter int unsigned NodeIdxWidth = 24,
+  localparam int unsigned W = E + M + 1,
+  localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1
+) (
+  input  logic                    clk_i,
+  input  logic                    rst_ni,
+  // a new ray: its thread's stack is emptied
+  input  logic                    clear_i,
+  input  logic [ThW-1:0]          clear_idx_i,
+  // a traversal step pushes the far child and its interval
+  input  logic                    push_i,
+  input  logic [ThW-1:0]          push_idx_i,
+  input  logic [NodeIdxWidth-1:0] push_node_i,
+  input  logic [W-1:0]            push_t0_i,
+  input  logic [W-1:0]            push_t1_i,
+  output logic                    push_full_o,  // push_idx_i's stack is full: the push is dropped
+  // the threads whose leaf is done
+  input  logic [Threads-1:0]      req_i,
+  output logic                    exit_valid_o,
+  output logic [ThW-1:0]          exit_idx_o,
+  // exit_idx_o's closest hit (hit, t) and interval end t1
+  input  logic                    exit_hit_i,
+  input  logic [W-1:0]            exit_best_t_i,
+  input  logic [W-1:0]            exit_t1_i,
+  // the decision: done, or go on to the popped node and interval
+  output logic                    exit_done_o,
+  output logic [NodeIdxWidth-1:0] pop_node_o,
+  output logic [W-1:0]            pop_t0_o,
+  output logic [W-1:0]            pop_t1_o
+);
+
+  logic stack_empty, best_le_t1, best_lt_pop;
+
+  rt_rr_arb #(.N(Threads)) u_arb (
+    .clk_i, .rst_ni, .req_i, .ack_i(1'b1), .valid_o(exit_valid_o), .idx_o(exit_idx_o)
+  );
+
+  rt_thread_stack #(.Threads(Threads), .StackDepth(StackDepth), .Width(NodeIdxWidth + 2 * W)) u_stack (
+    .clk_i, .rst_ni, .clear_i, .clear_idx_i,
+    .push_i, .push_idx_i, .push_data_i({push_node_i, push_t0_i, push_t1_i}), .push_full_o,
+    .pop_i(exit_valid_o && !exit_done_o), .pop_idx_i(exit_idx_o),
+    .pop_empty_o(stack_empty), .top_o({pop_node_o, pop_t0_o, pop_t1_o})
+  );
+
+  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_t1 (
+    .clk_i, .rst_ni, .en_i(1'b1), .valid_i(1'b1), .a_i(exit_best_t_i), .b_i(exit_t1_i),
+    .valid_o(), .lt_o(), .le_o(best_le_t1), .eq_o(), .min_o(), .max_o()
+  );
+  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_pop (
+    .clk_i, .rst_ni, .en_i(1'b1), .valid_i(1'b1), .a_i(exit_best_t_i), .b_i(pop_t0_o),
+    .valid_o(), .lt_o(best_lt_pop), .le_o(), .eq_o(), .min_o(), .max_o()
+  );
+
+  assign exit_done_o = (exit_hit_i && best_le_t1) || stack_empty || (exit_hit_i && best_lt_pop);
+
+endmodule
+
+`default_nettype wire
