@@ -273,7 +273,7 @@ TEST_F(SimCli, FormatBelowTheRequirementWarnsOrWithStrictFails) {
   ASSERT_EQ(j["warnings"].size(), 1u);
   EXPECT_EQ("kdrt: warning: " + j["warnings"][0].get<std::string>(),
             s.output.substr(at, s.output.find('\n', at) - at));
-  EXPECT_EQ(j["hits"].get<uint64_t>(), 0u);  // the silent all-miss, now with a warning
+  EXPECT_LT(j["hits"].get<uint64_t>(), some.size() / 2);  // most rays miss: no longer silently
 }
 
 TEST_F(SimCli, ModelChoiceFollowsTheScene) {
