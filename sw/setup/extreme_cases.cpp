@@ -32,20 +32,22 @@ Scene Mapped(const Scene& mesh, double scale, const dvec3& offset, const dvec3& 
   return s;
 }
 
-// Rays aimed at every vertex and edge midpoint of every triangle, from
-// center + 3 (target - center) plus a jitter of up to 5 % of `size`: each
-// passes through the target into the interior of a closed mesh around
-// `center`, so each must hit. Origin and direction are rounded once.
-void AddAimedRays(ExtremeCase& c, const dvec3& center, double size, uint32_t seed, size_t max_triangles = SIZE_MAX) {
+// Rays aimed at every vertex and edge midpoint of every `stride`-th triangle
+// (at most `max_triangles` of them), from center + reach (target - center)
+// plus a jitter of up to 5 % of `size`: each passes through the target into
+// the interior of a closed mesh around `center`, so each must hit. Origin
+// and direction are rounded once.
+void AddAimedRays(ExtremeCase& c, const dvec3& center, double size, uint32_t seed, size_t max_triangles = SIZE_MAX,
+                  size_t stride = 1, double reach = 3.0) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> jitter(-0.05, 0.05);
-  const size_t n = std::min(max_triangles, c.scene.triangles.size());
+  const size_t n = std::min(max_triangles, (c.scene.triangles.size() + stride - 1) / stride);
   for (size_t i = 0; i < n; ++i) {
-    const Triangle& t = c.scene.triangles[i];
+    const Triangle& t = c.scene.triangles[i * stride];
     const dvec3 v[3] = {D(t.v0), D(t.v1), D(t.v2)};
     const dvec3 targets[6] = {v[0], v[1], v[2], (v[0] + v[1]) * 0.5, (v[1] + v[2]) * 0.5, (v[2] + v[0]) * 0.5};
     for (const dvec3& target : targets) {
-      const dvec3 o = center + 3.0 * (target - center) + size * dvec3(jitter(rng), jitter(rng), jitter(rng));
+      const dvec3 o = center + reach * (target - center) + size * dvec3(jitter(rng), jitter(rng), jitter(rng));
       c.rays.push_back(Ray{F(o), F(target - o), 0.0f, INFINITY});
       c.must_hit.push_back(1);
     }
@@ -167,6 +169,16 @@ std::vector<ExtremeCase> MakeExtremeCases(bool reduced) {
       c.rays.push_back(Ray{{y, -3.0f, 1.0f}, {0.0f, 1.0f, -0.0f}, 0.0f, INFINITY});
       c.must_hit.insert(c.must_hit.end(), 2, 0);
     }
+    cases.push_back(std::move(c));
+  }
+  // A finely tessellated sphere seen from 30 radii: the tree's cells near
+  // the surface are a small fraction of the distance t, so a traversal
+  // whose cells are not conservative by the rounding error of t skips the
+  // cell of the triangle that the intersection test hits.
+  {
+    ExtremeCase c = Case("dense sphere, far rays", "dense",
+                         reduced ? ClosedSphereMesh(40, 80) : ClosedSphereMesh(100, 200));
+    AddAimedRays(c, dvec3(0.0), 1.0, 7, SIZE_MAX, reduced ? 3 : 10, 30.0);
     cases.push_back(std::move(c));
   }
   // Slivers: a box of aspect 10^6 (10^3 x 10^-3 x 1) split into triangles.

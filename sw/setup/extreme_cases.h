@@ -15,7 +15,7 @@ namespace kdrt {
 
 struct ExtremeCase {
   std::string name;   // e.g. "offset 1e5", unique, no spaces doubled
-  std::string group;  // offset, scale, direction, axis, surface, grazing, sliver, needle, degenerate, one-point
+  std::string group;  // offset, scale, direction, axis, surface, grazing, dense, sliver, needle, degenerate, one-point
   Scene scene;
   std::vector<Ray> rays;
   std::vector<uint8_t> must_hit;  // per ray

@@ -7,8 +7,10 @@
 // counts shrink as m grows.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 
+#include "trace/frame.h"
 #include "trace/precision_criteria.h"
 
 namespace kdrt {
@@ -193,7 +195,54 @@ PrecisionCriterion SplitOrder(const ImageView& image) {
   return c;
 }
 
+// x rounded to m bits (nearest even, unbounded exponent range): RoundMantissa
+// for a double, such as the difference of two rounded values.
+double RoundMantissaD(double x, int m) {
+  if (x == 0 || !std::isfinite(x)) return x;
+  int e = 0;
+  const double f = std::frexp(x, &e);  // |f| in [0.5, 1)
+  return std::ldexp(std::nearbyint(std::ldexp(f, m + 1)), e - m - 1);
+}
+
 }  // namespace
+
+// hit_degenerate: the triangle a ray hits (in fp64) as the watertight test
+// sees it: vertex - origin of the values the format loads, rounded once more.
+// When the ray starts far from a small triangle, that difference keeps none
+// of the triangle's extent and the test sees no area: the ray passes through
+// a mesh that has collapsed (holes on a closed mesh, seen with e6m5 on a
+// sphere seen from 100 radii).
+void AddRayMantissaCriteria(const ImageView& image, const std::vector<Ray>& rays, const std::vector<Hit>& hits,
+                            std::vector<PrecisionCriterion>* out) {
+  PrecisionCriterion c{"hit_degenerate", false, "hit tests",
+                       "lose their area relative to the ray origin (vertex - origin)"};
+  for (size_t i = 0; i < rays.size(); ++i) {
+    if (!hits[i].IsHit()) continue;
+    const Ray ray = ToFrame(rays[i], image.frame()).ray;
+    const img::TriangleRecord& tri = image.triangles()[hits[i].prim];
+    const float* v[3] = {tri.v0, tri.v1, tri.v2};
+    double p[3][3];
+    auto load = [&](int m) {
+      for (int k = 0; k < 3; ++k) {
+        for (int a = 0; a < 3; ++a) {
+          p[k][a] = RoundMantissaD(double{RoundMantissa(v[k][a], m)} - double{RoundMantissa(ray.o[a], m)}, m);
+        }
+      }
+    };
+    load(kMaxMantissaBits);
+    if (Collinear(p[0], p[1], p[2])) continue;  // no area even in fp32: nothing to lose
+    int needs = 0;
+    for (int m = kMaxMantissaBits - 1; m >= 1; --m) {
+      load(m);
+      if (Collinear(p[0], p[1], p[2])) {
+        needs = m + 1;
+        break;
+      }
+    }
+    c.Add(needs);
+  }
+  out->push_back(std::move(c));
+}
 
 void AddMantissaCriteria(const ImageView& image, int threads, std::vector<PrecisionCriterion>* out) {
   out->push_back(VertexCollapse(image));

@@ -6,6 +6,7 @@
 #include <cfloat>
 
 #include "trace/precision.h"
+#include "trace/watertight.h"
 #include "trace_test_util.h"
 
 namespace kdrt {
@@ -153,6 +154,33 @@ TEST(Precision, Fp32RepresentsTheGenerators) {
     EXPECT_GT(req.hit_tests, 0u) << name;
     ExpectMonotone(req);
   }
+}
+
+// A finely tessellated closed sphere seen from 100 radii: relative to the
+// ray origin (magnitude ~100 radii) a 6-bit significand keeps none of a
+// triangle's extent (~0.08 radii), so the test sees degenerate triangles and
+// rays fall through the mesh. hit_degenerate says so; fp32 keeps them all.
+TEST(Precision, FarRaysOnSmallTrianglesNeedMantissaBits) {
+  Scene s = ClosedSphereMesh(40, 80);
+  std::vector<Ray> rays;
+  for (size_t i = 0; i < s.triangles.size(); i += 7) {
+    const glm::vec3 target = s.triangles[i].v0;
+    const glm::vec3 o = 100.0f * target;
+    rays.push_back(Ray{o, target - o, 0.0f, INFINITY});
+  }
+  Prepared p(s);
+  const PrecisionRequirement req = AnalyzePrecision(p.view(), rays, 2);
+  std::printf("sphere from 100 radii: %s\n", req.MinimalFormat().c_str());
+  const PrecisionCriterion& c = Criterion(req, "hit_degenerate");
+  EXPECT_EQ(c.checked, rays.size());
+  EXPECT_EQ(c.Failing(fp::kFp32.m), 0u);
+  const fp::Format e6m5{6, 5};
+  EXPECT_GT(c.Failing(e6m5.m), rays.size() / 10);
+  EXPECT_NE(req.Shortfall(e6m5).find("lose their area relative to the ray origin"), std::string::npos)
+      << req.Shortfall(e6m5);
+  EXPECT_GT(CountMisses(p.view(), rays, e6m5), 0u);
+  EXPECT_EQ(CountMisses(p.view(), rays, fp::kFp32), 0u);
+  ExpectMonotone(req);
 }
 
 // Without rays only the image criteria run.
