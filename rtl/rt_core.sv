@@ -1,10 +1,11 @@
 // rt_core: one kdrt ray tracing core (docs/core-interface.md).
 //
 // Threads rays are in flight at once; each has a slot in the thread table
-// (ray, interval, closest hit) and a traversal stack (in rt_leaf_exit), and
-// is in one of the states below. The units are shared pipelines that any
-// thread may use, each taking one request per cycle, so while some threads
-// wait for memory others keep the units busy (SaarCOR, the T&I engine):
+// (ray, interval, node), a closest hit (rt_hit_merge), a traversal stack
+// (rt_leaf_exit) and a state (rt_thread_fsm), one of those below. The units
+// are shared pipelines that any thread may use, each taking one request per
+// cycle, so while some threads wait for memory others keep the units busy
+// (SaarCOR, the T&I engine):
 //
 //   ray in -> rt_ray_setup (into the image's frame) -> rt_clip_unit -> FETCH
 //   FETCH -> node cache -> WAIT_NODE -> inner: rt_trav_unit -> FETCH (push/descend)
@@ -79,12 +80,7 @@ module rt_core #(
   localparam int unsigned NodeShift = $clog2(kdrt_pkg::NodeBytes);
   localparam int unsigned NodeOffW = $clog2(16 * NodeLineBeats);
 
-  typedef enum logic [2:0] {
-    SFree, SSetup, SFetch, SWaitNode, STrav, SLeaf, SExit, SDone
-  } state_e;
-
   // ------------------------------------------------------------ thread table
-  state_e                  state_q [Threads], state_d [Threads];
   logic [RayIdWidth-1:0]   ray_id_q [Threads];
   logic [3*W-1:0]          o_q [Threads], d_q [Threads], inv_q [Threads];
   logic [3*W-1:0]          shear_q [Threads];  // sx, sy, sz
@@ -92,22 +88,12 @@ module rt_core #(
   logic [W-1:0]            tmin_q [Threads], t0_q [Threads], t1_q [Threads], leaf_tmax_q [Threads];
   logic signed [KW-1:0]    t_scale_q [Threads];  // k: world t = framed t * 2^k
   logic [NodeIdxWidth-1:0] node_q [Threads];
-  logic [Threads-1:0]      hit_q, ovf_q;       // hit something, stack overflowed
-  logic [W-1:0]            best_t_q [Threads], best_u_q [Threads], best_v_q [Threads];
-  logic [TriIdxWidth-1:0]  best_prim_q [Threads];
-  logic [CountW-1:0]       remaining_q [Threads];    // tests of the leaf not yet issued
-  logic [CountW-1:0]       outstanding_q [Threads];  // tests issued, results not yet back
+  logic [Threads-1:0]      ovf_q;              // the stack overflowed
 
-  logic [Threads-1:0] is_free, is_setup, is_fetch, is_wait, is_trav, is_leaf, is_exit, is_done;
-  logic [ThW-1:0]     alloc_idx;  // the lowest free thread takes the next ray
-  always_comb begin
-    alloc_idx = '0;
-    for (int t = Threads - 1; t >= 0; t--) begin
-      {is_done[t], is_exit[t], is_leaf[t], is_trav[t], is_wait[t], is_fetch[t], is_setup[t], is_free[t]} =
-          8'b1 << state_q[t];
-      if (is_free[t]) alloc_idx = ThW'(t);
-    end
-  end
+  // The threads in FREE, FETCH, EXIT and DONE, and the ones chosen: the lowest
+  // free thread takes the next ray, arbiters pick a leaf exit and a hit out.
+  logic [Threads-1:0] is_free, is_fetch, is_exit, is_done;
+  logic [ThW-1:0]     alloc_idx, exit_idx, out_idx;
   assign busy_o = ~&is_free;
 
   // ------------------------------------------------------------ ray in, setup, clip
@@ -164,14 +150,13 @@ module rt_core #(
   assign {node_index, node_axis, node_w0} = node_line[8 * kdrt_pkg::NodeBytes * node_addr[NodeOffW-1:NodeShift] +: 64];
   assign node_is_leaf = node_axis == kdrt_pkg::NodeLeaf;
 
-  logic                    trav_in_ready, trav_fire, trav_valid, trav_push, trav_overflow, stack_full;
+  logic                    trav_in_ready, trav_valid, trav_push, trav_overflow, stack_full;
   logic [ThW-1:0]          trav_tag;
   kdrt_pkg::trav_action_e  trav_action;
   logic [NodeIdxWidth-1:0] trav_first, trav_second;
   logic [W-1:0]            trav_ts_lo, trav_ts_hi, trav_t1;
   assign node_ready = node_is_leaf || trav_in_ready;
   assign node_fire = node_valid && node_ready;
-  assign trav_fire = node_fire && !node_is_leaf;
   rt_trav_unit #(.E(E), .M(M), .TagWidth(ThW), .NodeIdxWidth(NodeIdxWidth)) u_trav (
     .clk_i, .rst_ni, .in_valid_i(node_valid && !node_is_leaf), .in_ready_o(trav_in_ready),
     .in_tag_i(node_tag), .in_split_i(node_w0), .in_below_i(node_q[node_tag] + 1'b1),
@@ -187,14 +172,14 @@ module rt_core #(
 
   // ------------------------------------------------------------ leaf exit and stack
   logic                    exit_valid, exit_done;
-  logic [ThW-1:0]          exit_idx;
   logic [NodeIdxWidth-1:0] pop_node;
-  logic [W-1:0]            pop_t0, pop_t1;
+  logic [W-1:0]            pop_t0, pop_t1, exit_best_t;
+  logic                    exit_hit;
   rt_leaf_exit #(.E(E), .M(M), .Threads(Threads), .StackDepth(StackDepth), .NodeIdxWidth(NodeIdxWidth)) u_exit (
     .clk_i, .rst_ni, .clear_i(setup_fire), .clear_idx_i(setup_tag),
     .push_i(trav_push), .push_idx_i(trav_tag), .push_node_i(trav_second), .push_t0_i(trav_ts_lo),
     .push_t1_i(trav_t1), .push_full_o(stack_full), .req_i(is_exit), .exit_valid_o(exit_valid),
-    .exit_idx_o(exit_idx), .exit_hit_i(hit_q[exit_idx]), .exit_best_t_i(best_t_q[exit_idx]),
+    .exit_idx_o(exit_idx), .exit_hit_i(exit_hit), .exit_best_t_i(exit_best_t),
     .exit_t1_i(t1_q[exit_idx]), .exit_done_o(exit_done), .pop_node_o(pop_node), .pop_t0_o(pop_t0),
     .pop_t1_o(pop_t1)
   );
@@ -229,15 +214,18 @@ module rt_core #(
     .out_hit_o(isect_hit), .out_t_o(isect_t), .out_u_o(isect_u), .out_v_o(isect_v)
   );
 
-  // Closest hit: smaller t wins, equal t goes to the smaller id.
-  logic t_lt_best, t_eq_best, take_hit;
-  fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_best (
-    .clk_i, .rst_ni, .en_i(1'b1), .valid_i(1'b1), .a_i(isect_t), .b_i(best_t_q[isect_tag]),
-    .valid_o(), .lt_o(t_lt_best), .le_o(), .eq_o(t_eq_best), .min_o(), .max_o()
+  // The closest hits: smaller t wins, equal t goes to the smaller id.
+  logic                   out_hit;
+  logic [TriIdxWidth-1:0] out_prim;
+  logic [W-1:0]           leaf_best_t, out_t, out_u, out_v;
+  rt_hit_merge #(.E(E), .M(M), .Threads(Threads), .PrimWidth(TriIdxWidth)) u_merge (
+    .clk_i, .rst_ni, .init_i(setup_fire), .init_idx_i(setup_tag), .init_t_i(setup_tmax),
+    .cand_valid_i(isect_valid), .cand_idx_i(isect_tag), .cand_hit_i(isect_hit),
+    .cand_prim_i(TriIdxWidth'(isect_id)), .cand_t_i(isect_t), .cand_u_i(isect_u), .cand_v_i(isect_v),
+    .cand_take_o(), .leaf_idx_i(node_tag), .leaf_t_o(leaf_best_t), .exit_idx_i(exit_idx),
+    .exit_hit_o(exit_hit), .exit_t_o(exit_best_t), .out_idx_i(out_idx), .out_hit_o(out_hit),
+    .out_prim_o(out_prim), .out_t_o(out_t), .out_u_o(out_u), .out_v_o(out_v)
   );
-  assign take_hit = isect_valid && isect_hit &&
-                    (t_lt_best || (t_eq_best && (!hit_q[isect_tag] ||
-                                                 TriIdxWidth'(isect_id) < best_prim_q[isect_tag])));
 
   // ------------------------------------------------------------ caches and memory
   logic [2:0] cache_hit, cache_miss;  // node, list, triangle
@@ -258,100 +246,56 @@ module rt_core #(
   );
 
   // ------------------------------------------------------------ hit out
-  logic           out_valid, out_ready, out_fire;
-  logic [ThW-1:0] out_idx;
+  logic out_valid, out_ready, out_fire;
   rt_rr_arb #(.N(Threads)) u_out_arb (
     .clk_i, .rst_ni, .req_i(is_done), .ack_i(out_ready), .valid_o(out_valid), .idx_o(out_idx)
   );
   assign out_fire = out_valid && out_ready;
   rt_hit_out #(.E(E), .M(M), .RayIdWidth(RayIdWidth), .PrimWidth(TriIdxWidth)) u_hit_out (
     .clk_i, .rst_ni, .in_valid_i(out_valid), .in_ready_o(out_ready), .in_ray_id_i(ray_id_q[out_idx]),
-    .in_hit_i(hit_q[out_idx]), .in_prim_i(best_prim_q[out_idx]), .in_t_i(best_t_q[out_idx]),
-    .in_t_scale_i(t_scale_q[out_idx]), .in_u_i(best_u_q[out_idx]), .in_v_i(best_v_q[out_idx]),
-    .in_overflow_i(ovf_q[out_idx]),
+    .in_hit_i(out_hit), .in_prim_i(out_prim), .in_t_i(out_t), .in_t_scale_i(t_scale_q[out_idx]),
+    .in_u_i(out_u), .in_v_i(out_v), .in_overflow_i(ovf_q[out_idx]),
     .hit_valid_o, .hit_ready_i, .hit_ray_id_o, .hit_o, .hit_prim_o, .hit_t_o, .hit_u_o, .hit_v_o, .hit_overflow_o
   );
 
-  // ------------------------------------------------------------ thread table updates
+  // ------------------------------------------------------------ thread states and table updates
+  rt_thread_fsm #(.Threads(Threads), .CountWidth(CountW)) u_fsm (
+    .clk_i, .rst_ni, .free_o(is_free), .fetch_o(is_fetch), .exit_o(is_exit), .done_o(is_done),
+    .alloc_idx_o(alloc_idx), .alloc_i(ray_fire), .setup_i(setup_fire), .setup_idx_i(setup_tag),
+    .clip_i(clip_valid), .clip_idx_i(clip_tag), .clip_miss_i(clip_miss), .fetch_i(fetch_fire),
+    .fetch_idx_i(fetch_idx), .node_i(node_fire), .node_idx_i(node_tag), .node_leaf_i(node_is_leaf),
+    .node_job_i(job_push), .node_tests_i(CountW'(node_index)), .trav_i(trav_valid), .trav_idx_i(trav_tag),
+    .trav_overflow_i(trav_overflow), .issue_i(tri_fire), .issue_idx_i(tri_tag), .retire_i(isect_valid),
+    .retire_idx_i(isect_tag), .exit_i(exit_valid), .exit_idx_i(exit_idx), .exit_done_i(exit_done),
+    .out_i(out_fire), .out_idx_i(out_idx)
+  );
+
   // Each event names one thread (one-hot here), which is always in the
-  // event's state (checked below): one case per state, looking at that
-  // state's events only.
+  // event's state (rt_thread_fsm checks), so one thread's events never collide.
   function automatic logic [Threads-1:0] onehot(input logic en, input logic [ThW-1:0] idx);
     onehot = en ? Threads'(1) << idx : '0;
   endfunction
   wire [Threads-1:0] on_alloc = onehot(ray_fire, alloc_idx), on_setup = onehot(setup_fire, setup_tag),
-                     on_clip = onehot(clip_valid, clip_tag), on_fetch = onehot(fetch_fire, fetch_idx),
-                     on_node = onehot(node_fire, node_tag), on_trav = onehot(trav_valid, trav_tag),
-                     on_issue = onehot(tri_fire, tri_tag), on_retire = onehot(isect_valid, isect_tag),
-                     on_exit = onehot(exit_valid, exit_idx), on_out = onehot(out_fire, out_idx);
-
-  always_comb begin
-    for (int t = 0; t < Threads; t++) begin
-      state_d[t] = state_q[t];
-      unique case (state_q[t])
-        SFree:     if (on_alloc[t]) state_d[t] = SSetup;
-        SSetup:    if (on_clip[t]) state_d[t] = clip_miss ? SDone : SFetch;
-        SFetch:    if (on_fetch[t]) state_d[t] = SWaitNode;
-        SWaitNode: if (on_node[t]) state_d[t] = !node_is_leaf ? STrav : job_push ? SLeaf : SExit;
-        STrav:     if (on_trav[t]) state_d[t] = trav_overflow ? SDone : SFetch;
-        SLeaf:     if (remaining_q[t] == '0 && outstanding_q[t] == '0) state_d[t] = SExit;
-        SExit:     if (on_exit[t]) state_d[t] = exit_done ? SDone : SFetch;
-        SDone:     if (on_out[t]) state_d[t] = SFree;
-        default:   ;
-      endcase
-    end
-  end
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      for (int t = 0; t < Threads; t++) state_q[t] <= SFree;
-    end else begin
-      for (int t = 0; t < Threads; t++) state_q[t] <= state_d[t];
-    end
-  end
+                     on_clip = onehot(clip_valid, clip_tag), on_node = onehot(node_fire, node_tag),
+                     on_trav = onehot(trav_valid, trav_tag), on_exit = onehot(exit_valid, exit_idx);
 
   always_ff @(posedge clk_i) begin
     for (int t = 0; t < Threads; t++) begin
-      unique case (state_q[t])
-        SFree: if (on_alloc[t]) ray_id_q[t] <= ray_id_i;
-        SSetup: begin
-          if (on_setup[t]) begin
-            {o_q[t], d_q[t], inv_q[t], tmin_q[t]} <= {setup_o, setup_d, setup_inv, setup_tmin};
-            t_scale_q[t] <= setup_t_scale;
-            {shear_q[t], axes_q[t]} <= {setup_sz, setup_sy, setup_sx, setup_kz, setup_ky, setup_kx};
-            {best_t_q[t], best_u_q[t], best_v_q[t], best_prim_q[t]} <= {setup_tmax, {2 * W{1'b0}}, {TriIdxWidth{1'b1}}};
-            {hit_q[t], ovf_q[t], node_q[t], remaining_q[t], outstanding_q[t]} <= '0;
-          end
-          if (on_clip[t]) {t0_q[t], t1_q[t]} <= {clip_t0, clip_t1};
-        end
-        SWaitNode: if (on_node[t] && job_push) {remaining_q[t], leaf_tmax_q[t]} <= {CountW'(node_index), best_t_q[t]};
-        STrav: begin
-          if (on_trav[t]) node_q[t] <= (trav_action == kdrt_pkg::TravSecond) ? trav_second : trav_first;
-          if (on_trav[t] && trav_push) t1_q[t] <= trav_ts_hi;
-          if (on_trav[t] && trav_overflow) ovf_q[t] <= 1'b1;
-        end
-        SLeaf: begin  // tests issued and results returned, possibly both in one cycle
-          if (on_issue[t]) remaining_q[t] <= remaining_q[t] - 1'b1;
-          if (on_issue[t] && !on_retire[t]) outstanding_q[t] <= outstanding_q[t] + 1'b1;
-          if (!on_issue[t] && on_retire[t]) outstanding_q[t] <= outstanding_q[t] - 1'b1;
-          if (on_retire[t] && take_hit) begin
-            {best_t_q[t], best_u_q[t], best_v_q[t]} <= {isect_t, isect_u, isect_v};
-            best_prim_q[t] <= TriIdxWidth'(isect_id);
-            hit_q[t] <= 1'b1;
-          end
-        end
-        SExit: if (on_exit[t] && !exit_done) {node_q[t], t0_q[t], t1_q[t]} <= {pop_node, pop_t0, pop_t1};
-        default: ;
-      endcase
+      if (on_alloc[t]) ray_id_q[t] <= ray_id_i;
+      if (on_setup[t]) begin
+        {o_q[t], d_q[t], inv_q[t], tmin_q[t]} <= {setup_o, setup_d, setup_inv, setup_tmin};
+        t_scale_q[t] <= setup_t_scale;
+        {shear_q[t], axes_q[t]} <= {setup_sz, setup_sy, setup_sx, setup_kz, setup_ky, setup_kx};
+        {ovf_q[t], node_q[t]} <= '0;
+      end
+      if (on_clip[t]) {t0_q[t], t1_q[t]} <= {clip_t0, clip_t1};
+      if (on_node[t] && job_push) leaf_tmax_q[t] <= leaf_best_t;
+      if (on_trav[t]) node_q[t] <= (trav_action == kdrt_pkg::TravSecond) ? trav_second : trav_first;
+      if (on_trav[t] && trav_push) t1_q[t] <= trav_ts_hi;
+      if (on_trav[t] && trav_overflow) ovf_q[t] <= 1'b1;
+      if (on_exit[t] && !exit_done) {node_q[t], t0_q[t], t1_q[t]} <= {pop_node, pop_t0, pop_t1};
     end
   end
-
-`ifndef SYNTHESIS
-  always_ff @(posedge clk_i) begin
-    if (rst_ni) assert (((on_setup | on_clip) & ~is_setup) == '0 && (on_node & ~is_wait) == '0 &&
-                        (on_trav & ~is_trav) == '0 && ((on_issue | on_retire) & ~is_leaf) == '0)
-      else $error("rt_core: an event for a thread that is not in the event's state");
-  end
-`endif
 
   // Address bits outside a line, the record's id and padding words and id
   // bits above TriIdxWidth (zero for a scene the parameters fit) are unused.
@@ -365,23 +309,15 @@ module rt_core #(
     .clk_i, .rst_ni, .valid_i(ray_valid_i), .ready_i(ray_ready_o), .payload_i({ray_id_i, ray_i})
   );
 
-  // ------------------------------------------------------------ performance events (kdrt_pkg::perf_t)
-  logic any_progress;
-  assign any_progress = trav_fire || (list_req_valid && list_req_ready) || entry_fire || tri_fire || exit_valid ||
-                        out_fire || ray_fire || clip_valid || trav_valid || isect_valid;
-  assign perf_o.trav_busy = trav_fire;
-  assign perf_o.list_busy = (list_req_valid && list_req_ready) || entry_fire;
-  assign perf_o.isect_busy = tri_fire;
-  assign {perf_o.tri_hit, perf_o.list_hit, perf_o.node_hit} = cache_hit;
-  assign {perf_o.tri_miss, perf_o.list_miss, perf_o.node_miss} = cache_miss;
-  assign perf_o.stall_mem = busy_o && !any_progress && mem_wait;
-  assign perf_o.stall_stack = (is_exit & ~on_exit) != '0;
-  assign perf_o.stall_backpressure = (hit_valid_o && !hit_ready_i) || (tri_valid && !isect_in_ready) ||
-                                     (node_valid && !node_ready);
-  assign perf_o.ray_in = ray_fire;
-  assign perf_o.ray_out = hit_valid_o && hit_ready_i;
-  assign perf_o.overflow = trav_overflow;
-  assign perf_o.trav_leaf = node_fire && node_is_leaf;
+  // ------------------------------------------------------------ performance events
+  rt_perf_events #(.Threads(Threads)) u_perf (
+    .busy_i(busy_o), .ray_in_i(ray_fire), .clip_i(clip_valid), .node_i(node_fire), .node_leaf_i(node_is_leaf),
+    .node_stall_i(node_valid && !node_ready), .trav_i(trav_valid), .overflow_i(trav_overflow),
+    .list_req_i(list_req_valid && list_req_ready), .list_entry_i(entry_fire), .isect_in_i(tri_fire),
+    .isect_stall_i(tri_valid && !isect_in_ready), .isect_out_i(isect_valid), .exit_req_i(is_exit),
+    .exit_i(exit_valid), .exit_idx_i(exit_idx), .out_i(out_fire), .hit_valid_i(hit_valid_o), .hit_ready_i,
+    .cache_hit_i(cache_hit), .cache_miss_i(cache_miss), .mem_wait_i(mem_wait), .perf_o
+  );
 
 endmodule
 

@@ -16,9 +16,9 @@ WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 
 UNITS=(fp_add fp_mul fp_div fp_cmp fp_from_f32 fp_to_f32 fp_nudge fp_ldexp rt_trav_unit rt_clip_unit
-       rt_ray_setup rt_isect_unit rt_hit_out rt_leaf_exit)
+       rt_ray_setup rt_isect_unit rt_hit_out rt_leaf_exit rt_hit_merge)
 # Units without E and M: one row each, default parameters.
-PLAIN_UNITS=(rt_fifo rt_list_unit rt_thread_stack rt_mem_system)
+PLAIN_UNITS=(rt_fifo rt_list_unit rt_thread_stack rt_mem_system rt_thread_fsm rt_perf_events)
 # The preset formats: the one list in cmake/presets.cmake.
 read -r -a FORMATS <<< "$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname "$0")/../cmake/presets.cmake")"
 
@@ -75,6 +75,8 @@ latency() {  # documented latency of <unit> for mantissa bits <m>
     rt_isect_unit) echo $(($2 + 34)) ;;
     rt_hit_out) echo 1 ;;
     rt_leaf_exit) echo 0 ;;
+    rt_hit_merge) echo 0 ;;
+    rt_perf_events) echo 0 ;;
     rt_fifo) echo 1 ;;
     rt_thread_stack) echo 0 ;;
     *) echo - ;;
