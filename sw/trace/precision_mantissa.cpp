@@ -112,6 +112,21 @@ PrecisionCriterion VertexCollapse(const ImageView& image) {
   return c;
 }
 
+// The bits a triangle needs to keep its area when load(m, p) gives its three
+// vertices at m mantissa bits: 1 + the largest m < 23 at which they are
+// collinear, 0 if never, -1 if they are collinear already at 23 bits.
+template <class Load>
+int BitsKeepingArea(Load load) {
+  double p[3][3];
+  load(kMaxMantissaBits, p);
+  if (Collinear(p[0], p[1], p[2])) return -1;
+  for (int m = kMaxMantissaBits - 1; m >= 1; --m) {
+    load(m, p);
+    if (Collinear(p[0], p[1], p[2])) return m + 1;
+  }
+  return 0;
+}
+
 // degenerate_triangles: triangles with area in the image whose rounded
 // vertices are collinear at some width below 23 bits.
 PrecisionCriterion DegenerateTriangles(const ImageView& image, int threads) {
@@ -121,22 +136,11 @@ PrecisionCriterion DegenerateTriangles(const ImageView& image, int threads) {
   std::vector<int> needs(n, -1);  // -1: degenerate in the image, not checked
   ParallelFor(n, threads, [&](size_t t) {
     const float* v[3] = {tris[t].v0, tris[t].v1, tris[t].v2};
-    double p[3][3];
-    auto load = [&](int m) {
+    needs[t] = BitsKeepingArea([&](int m, double p[3][3]) {
       for (int k = 0; k < 3; ++k) {
         for (int a = 0; a < 3; ++a) p[k][a] = RoundMantissa(v[k][a], m);
       }
-    };
-    load(kMaxMantissaBits);
-    if (Collinear(p[0], p[1], p[2])) return;
-    needs[t] = 0;
-    for (int m = kMaxMantissaBits - 1; m >= 1; --m) {
-      load(m);
-      if (Collinear(p[0], p[1], p[2])) {
-        needs[t] = m + 1;
-        return;
-      }
-    }
+    });
   });
   for (int b : needs) {
     if (b >= 0) c.Add(b);
@@ -221,25 +225,14 @@ void AddRayMantissaCriteria(const ImageView& image, const std::vector<Ray>& rays
     const Ray ray = ToFrame(rays[i], image.frame()).ray;
     const img::TriangleRecord& tri = image.triangles()[hits[i].prim];
     const float* v[3] = {tri.v0, tri.v1, tri.v2};
-    double p[3][3];
-    auto load = [&](int m) {
+    const int needs = BitsKeepingArea([&](int m, double p[3][3]) {
       for (int k = 0; k < 3; ++k) {
         for (int a = 0; a < 3; ++a) {
           p[k][a] = RoundMantissaD(double{RoundMantissa(v[k][a], m)} - double{RoundMantissa(ray.o[a], m)}, m);
         }
       }
-    };
-    load(kMaxMantissaBits);
-    if (Collinear(p[0], p[1], p[2])) continue;  // no area even in fp32: nothing to lose
-    int needs = 0;
-    for (int m = kMaxMantissaBits - 1; m >= 1; --m) {
-      load(m);
-      if (Collinear(p[0], p[1], p[2])) {
-        needs = m + 1;
-        break;
-      }
-    }
-    c.Add(needs);
+    });
+    if (needs >= 0) c.Add(needs);  // -1: no area even in fp32, nothing to lose
   }
   out->push_back(std::move(c));
 }
