@@ -9,6 +9,7 @@ PACKAGES=(
   libtinyobjloader-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libembree-dev libmpfr-dev libgmp-dev
   verilator libsystemc-dev yosys
+  chromium  # the screenshot test of the kdrt trade page
 )
 
 missing=()

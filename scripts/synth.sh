@@ -1,14 +1,13 @@
 #!/usr/bin/env bash
 # Generic Yosys synthesis of the (E, M) floating-point units and the core's
-# units for each preset (units without E and M once, default parameters):
-# fails if any latch is inferred, prints a table (cells, flip-flops, logic
-# depth = longest path in gates between registers/ports from `ltp -noff`) and
-# writes it to docs/synth-table.md.
+# units for each preset (units without E and M once, default parameters), each
+# by scripts/synth-unit.sh: fails if any latch is inferred, prints a table
+# (cells, flip-flops, logic depth = longest path in gates between
+# registers/ports from `ltp -noff`) and writes it to docs/synth-table.md.
 # Usage: scripts/synth.sh   (from anywhere; JOBS=n to change parallelism)
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-RTL="$ROOT/rtl"
 YOSYS="${YOSYS:-yosys}"
 JOBS="${JOBS:-2}"
 OUT_MD="$ROOT/docs/synth-table.md"
@@ -24,28 +23,21 @@ read -r -a FORMATS <<< "$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname 
 
 run_one() {  # run_one <unit> <name> <E> <M>: writes $WORK/<unit>_<name>.{log,row}; E "-": defaults
   local unit="$1" name="$2" e="$3" m="$4"
-  local log="$WORK/${unit}_${name}.log"
-  local chp=""
-  if [ "$e" != - ]; then chp="chparam -set E $e -set M $m $unit"; fi
-  if ! "$YOSYS" -q -l "$log" -p "
-      read_verilog -sv $RTL/kdrt_fp_pkg.sv $RTL/kdrt_pkg.sv $(ls $RTL/*.sv | grep -v _pkg.sv | tr '\n' ' ')
-      $chp
-      synth -flatten -top $unit
-      select -assert-none t:\$*latch* t:\$_DLATCH* t:\$_SR_* t:\$sr
-      tee -o $WORK/${unit}_${name}.stat stat
-      tee -o $WORK/${unit}_${name}.ltp ltp -noff
-    " > /dev/null 2>&1; then
+  local json="$WORK/${unit}_${name}.json"
+  # synth-unit.sh says why it failed (the end of the Yosys log) on stderr.
+  if ! "$SYNTH_UNIT" "$unit" "$e" "$m" "$json" > "$WORK/${unit}_${name}.log" 2>&1; then
     echo "FAIL" > "$WORK/${unit}_${name}.row"
     return 0
   fi
   local cells ffs depth
-  cells=$(grep -m1 -E 'Number of cells:' "$WORK/${unit}_${name}.stat" | awk '{print $NF}')
-  ffs=$(grep -E '\$_[A-Z]*DFF[A-Z0-9]*_' "$WORK/${unit}_${name}.stat" | awk '{s += $NF} END {print s + 0}')
-  depth=$(grep -m1 -o 'length=[0-9]*' "$WORK/${unit}_${name}.ltp" | cut -d= -f2)
+  cells=$(sed -n 's/.*"cells": \([0-9]*\).*/\1/p' "$json")
+  ffs=$(sed -n 's/.*"flip_flops": \([0-9]*\).*/\1/p' "$json")
+  depth=$(sed -n 's/.*"depth": \([0-9]*\).*/\1/p' "$json")
   echo "$cells $ffs $depth" > "$WORK/${unit}_${name}.row"
 }
 export -f run_one
-export RTL YOSYS WORK
+SYNTH_UNIT="$ROOT/scripts/synth-unit.sh"
+export SYNTH_UNIT YOSYS WORK
 
 jobs_list=()
 for unit in "${UNITS[@]}"; do

@@ -18,5 +18,6 @@ Runner AddRaysCommand(CLI::App& app);
 Runner AddSimCommand(CLI::App& app);
 Runner AddCompareCommand(CLI::App& app);
 Runner AddExtremesCommand(CLI::App& app);
+Runner AddTradeCommand(CLI::App& app);
 
 }  // namespace kdrt::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       kdrt::cli::AddSimCommand(app),
       kdrt::cli::AddCompareCommand(app),
       kdrt::cli::AddExtremesCommand(app),
+      kdrt::cli::AddTradeCommand(app),
   };
   try {
     try {

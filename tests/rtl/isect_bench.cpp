@@ -70,12 +70,10 @@ img::TriangleRecord Record(const glm::vec3& a, const glm::vec3& b, const glm::ve
   return t;
 }
 
-glm::vec3 Vertex(const img::TriangleRecord& t, int k) {
-  const float* v = k == 0 ? t.v0 : k == 1 ? t.v1 : t.v2;
-  return {v[0], v[1], v[2]};
+float* Coord(img::TriangleRecord& t, int j) {
+  float* const vertices[3] = {t.v0, t.v1, t.v2};
+  return &vertices[j / 3][j % 3];
 }
-
-float* Coord(img::TriangleRecord& t, int j) { return j < 3 ? &t.v0[j] : j < 6 ? &t.v1[j - 3] : &t.v2[j - 6]; }
 
 glm::dvec3 RandomDir(Rng& rng) {
   glm::dvec3 d;

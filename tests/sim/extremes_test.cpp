@@ -33,7 +33,9 @@ TEST(Extremes, SimMatchesRenderAndNoHolesWithoutAWarning) {
     for (const auto& [format, cell] : c["formats"].items()) {
       EXPECT_EQ(cell["sim_mismatch"].get<int>(), 0) << name << " " << format << ": kdrt sim differs from render";
       // Where the precision analysis says the format suffices, no ray leaks.
-      if (!cell.contains("warning")) EXPECT_EQ(cell["holes"].get<int>(), 0) << name << " " << format;
+      if (!cell.contains("warning")) {
+        EXPECT_EQ(cell["holes"].get<int>(), 0) << name << " " << format;
+      }
     }
     EXPECT_EQ(c["formats"]["fp32"]["holes"].get<int>(), 0) << name;
   }

@@ -1,0 +1,151 @@
+#include "trade/trade.h"
+
+#include <unistd.h>
+
+#include <cinttypes>
+#include <cstdio>
+
+#include "common/error.h"
+#include "sim/model_runner.h"
+#include "trace/hit_compare.h"
+#include "trace/images.h"
+#include "trace/precision.h"
+#include "trace/tracer.h"
+
+namespace kdrt::trade {
+namespace {
+
+void Say(const TradeOptions& o, const std::string& text) {
+  if (o.progress) o.progress(text);
+}
+
+// Traces every ray in `format` and fills the software columns.
+FormatResult Trace(const PreparedScene& p, const RaySet& rays, const fp::Format& format, const TradeOptions& o) {
+  FormatResult r;
+  r.format = format;
+  TraceOptions to;
+  to.format = format;
+  to.threads = o.threads;
+  TraceStats ts;
+  r.hits = TraceRays(ImageView(p.image), rays.rays, to, &ts);
+  const double n = rays.rays.empty() ? 1.0 : static_cast<double>(rays.rays.size());
+  r.nodes = ts.totals.nodes / n;
+  r.leaves = ts.totals.leaves / n;
+  r.tri_tests = ts.totals.tri_tests / n;
+  r.trace_seconds = ts.seconds;
+  r.rgb = ShadeEyeLight(p.scene, rays.rays, r.hits);
+  r.memory_bytes = p.image.size();
+  return r;
+}
+
+// Runs the RTL core on every stride-th ray and checks its records against the
+// reference tracer's in the same format, as `kdrt sim` does.
+SimNumbers Simulate(const PreparedScene& p, const RaySet& rays, uint64_t stride, const FormatResult& r,
+                    bool progress) {
+  std::vector<Ray> sub;
+  std::vector<size_t> index;
+  for (size_t i = 0; i < rays.rays.size(); i += stride) {
+    sub.push_back(rays.rays[i]);
+    index.push_back(i);
+  }
+  sim::RunOptions run;
+  run.progress = progress;  // the model's own progress line
+  const sim::ModelRun m = sim::Simulate(p.image, sub, r.format, run);
+  if (m.exit_code != 0) {
+    throw InputError("the RTL core failed in " + r.format.Name() + " (kdrt sim exit " + std::to_string(m.exit_code) +
+                     "; its messages are above)");
+  }
+  for (size_t k = 0; k < sub.size(); ++k) {
+    if (!SameBits(m.hits[k], r.hits[index[k]])) {
+      throw InputError("the RTL core and the reference differ in " + r.format.Name() + " at ray " +
+                       std::to_string(index[k]) + ": RTL " + HitText(m.hits[k]) + ", reference " +
+                       HitText(r.hits[index[k]]));
+    }
+  }
+  SimNumbers s;
+  s.rays = sub.size();
+  s.cycles_per_ray = m.report.value("cycles_per_ray", 0.0);
+  s.efficiency = m.report.value("efficiency", 0.0);
+  if (m.report.contains("memory")) s.bytes_per_ray = m.report["memory"].value("bytes_per_ray", 0.0);
+  s.cache_hit_rate = m.report.value("cache_hit_rate", nlohmann::json::object());
+  return s;
+}
+
+}  // namespace
+
+std::optional<double> FormatResult::RaysPerCyclePerKcell() const {
+  if (!sim || !area || area->cells <= 0 || sim->cycles_per_ray <= 0) return std::nullopt;
+  return sim->RaysPerCycle() / (area->cells / 1000.0);
+}
+
+std::string Recommend(const std::vector<FormatResult>& formats, double target) {
+  const FormatResult* best = nullptr;
+  for (const FormatResult& r : formats) {
+    if (r.accuracy.MismatchFraction() > target || r.holes.holes != 0) continue;
+    if (best == nullptr || r.format.Width() < best->format.Width() ||
+        (r.format.Width() == best->format.Width() && r.area && best->area && r.area->cells < best->area->cells)) {
+      best = &r;
+    }
+  }
+  return best ? best->format.Name() : "";
+}
+
+TradeResult MeasureTrade(const PreparedScene& p, const RaySet& rays, const TradeOptions& o) {
+  for (const fp::Format& f : o.formats) {
+    if (f.IsFp64()) throw InputError("trade: fp64 is the truth every format is compared with, not a format to trade");
+  }
+  TradeResult t;
+  t.scene = p.scene.source;
+  t.triangles = p.scene.triangles.size();
+  t.width = rays.width;
+  t.height = rays.height;
+  t.rays = rays.rays.size();
+  t.target_mismatch = o.target_mismatch;
+  if (o.sim && o.sim_rays > 0 && o.sim_rays < t.rays) {
+    t.sim_stride = (t.rays + o.sim_rays - 1) / o.sim_rays;
+    t.notes.push_back("cycles are measured on a subsample: every " + std::to_string(t.sim_stride) + "th ray (" +
+                      std::to_string((t.rays + t.sim_stride - 1) / t.sim_stride) + " of " + std::to_string(t.rays) +
+                      ")");
+  }
+  t.notes.push_back("every format reads the same fp32 memory image today (issue \"nodes and triangles stored in the "
+                    "format's width\"), so memory bytes do not shrink with the format");
+
+  Say(o, "precision requirement of the scene");
+  const PrecisionRequirement req = AnalyzePrecision(ImageView(p.image), rays.rays, o.threads);
+  t.minimal_format = req.MinimalFormat();
+
+  Say(o, "fp64 (truth): tracing " + std::to_string(t.rays) + " rays");
+  t.truth = Trace(p, rays, fp::kFp64, o);
+  t.truth.holes = WatertightHoles(fp::kFp64);
+
+  const size_t n = o.formats.size();
+  for (size_t k = 0; k < n; ++k) {
+    const fp::Format& f = o.formats[k];
+    const std::string tag = "[" + std::to_string(k + 1) + "/" + std::to_string(n) + "] " + f.Name() + ": ";
+    Say(o, tag + "tracing");
+    FormatResult r = Trace(p, rays, f, o);
+    r.warning = req.Shortfall(f);
+    if (!r.warning.empty()) std::fprintf(stderr, "kdrt: warning: %s\n", r.warning.c_str());
+    r.accuracy = CompareWithTruth(r.hits, t.truth.hits, r.rgb, t.truth.rgb);
+    Say(o, tag + "watertightness set");
+    r.holes = WatertightHoles(f);
+    if (o.sim) {
+      Say(o, tag + "simulating the RTL core on " + std::to_string((t.rays + t.sim_stride - 1) / t.sim_stride) +
+                 " rays");
+      r.sim = Simulate(p, rays, t.sim_stride, r, o.progress && isatty(STDERR_FILENO));
+    }
+    if (o.area) {
+      Say(o, tag + "area");
+      r.area = CoreArea(f, o.area_options);
+      if (r.area->source == "estimate") {
+        t.notes.push_back(f.Name() + " area is an estimate (" + r.area->detail + "), not a synthesis");
+      }
+    }
+    t.formats.push_back(std::move(r));
+  }
+  t.recommended = Recommend(t.formats, o.target_mismatch);
+  for (const std::string& note : t.notes) std::fprintf(stderr, "kdrt: note: %s\n", note.c_str());
+  return t;
+}
+
+}  // namespace kdrt::trade

@@ -1,0 +1,220 @@
+// End-to-end tests of `kdrt trade`: its accuracy numbers against an
+// independent computation from the hit buffers `kdrt render` writes, its
+// cycles against `kdrt sim`, its refusal of bad input with nothing written,
+// and its page as a person sees it (a headless Chromium screenshot).
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <nlohmann/json.hpp>
+
+#include "scenes/gen/generators.h"
+#include "tests/common/run_kdrt.h"
+#include "trace/images.h"
+
+namespace kdrt {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::RunKdrt;
+using testing::RunResult;
+
+nlohmann::json ReadJson(const std::string& path) {
+  std::ifstream f(path);
+  return nlohmann::json::parse(f);
+}
+
+class TradeCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    dir_ = fs::temp_directory_path() / ("kdrt_trade_" + name + "_" + std::to_string(getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+  size_t FileCount() const { return std::distance(fs::directory_iterator(dir_), fs::directory_iterator()); }
+  fs::path dir_;
+};
+
+struct Direct {
+  uint64_t hitmiss = 0, prim = 0, common = 0;
+  double t_rel_max = 0;
+};
+
+// The oracle: the two hit buffers compared here, without trade's code.
+Direct CompareBuffers(const std::string& a_path, const std::string& truth_path) {
+  int w = 0, h = 0, tw = 0, th = 0;
+  const std::vector<Hit> a = ReadHitBuffer(a_path, &w, &h);
+  const std::vector<Hit> truth = ReadHitBuffer(truth_path, &tw, &th);
+  EXPECT_EQ(a.size(), truth.size());
+  Direct d;
+  for (size_t i = 0; i < std::min(a.size(), truth.size()); ++i) {
+    if (a[i].IsHit() != truth[i].IsHit()) {
+      ++d.hitmiss;
+    } else if (a[i].IsHit()) {
+      ++d.common;
+      if (a[i].prim != truth[i].prim) ++d.prim;
+      d.t_rel_max = std::max(d.t_rel_max, std::fabs(double(a[i].t) - truth[i].t) / std::fabs(double(truth[i].t)));
+    }
+  }
+  return d;
+}
+
+// Every generator: fp32's hit/miss disagreement with fp64 is at most 1e-4,
+// and the bf16 and fp16 rows are what a direct comparison of their hit
+// buffers with the fp64 buffer gives.
+TEST_F(TradeCli, AccuracyAgreesWithDirectHitBufferComparisonOnEveryGenerator) {
+  for (const std::string& gen : GeneratorNames()) {
+    SCOPED_TRACE(gen);
+    const std::string scene = "gen:" + gen + ":3000", res = "--res 112x112";
+    const RunResult r =
+        RunKdrt("trade " + scene + " " + res + " --formats fp32,bf16,fp16 --no-area -q --json " + Path("t.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const nlohmann::json j = ReadJson(Path("t.json"));
+    ASSERT_EQ(j["formats"].size(), 3u);
+    ASSERT_EQ(RunKdrt("render " + scene + " " + res + " --format fp64 -q -o " + Path("fp64.png") + " --hits " +
+                      Path("fp64.exr"))
+                  .exit_code,
+              0);
+    for (const nlohmann::json& row : j["formats"]) {
+      const std::string f = row["format"];
+      SCOPED_TRACE(f);
+      ASSERT_EQ(RunKdrt("render " + scene + " " + res + " --format " + f + " -q -o " + Path(f + ".png") +
+                        " --hits " + Path(f + ".exr"))
+                    .exit_code,
+                0);
+      const Direct d = CompareBuffers(Path(f + ".exr"), Path("fp64.exr"));
+      const nlohmann::json& acc = row["accuracy"];
+      EXPECT_EQ(acc["hitmiss_rays"].get<uint64_t>(), d.hitmiss);
+      EXPECT_EQ(acc["prim_rays"].get<uint64_t>(), d.prim);
+      EXPECT_EQ(acc["common_hits"].get<uint64_t>(), d.common);
+      EXPECT_DOUBLE_EQ(acc["hitmiss_mismatch"].get<double>(), double(d.hitmiss) / j["rays"].get<double>());
+      EXPECT_NEAR(acc["t_rel_max"].get<double>(), d.t_rel_max, 1e-12 + 1e-9 * d.t_rel_max);
+      if (f == "fp32") {
+        EXPECT_LE(acc["hitmiss_mismatch"].get<double>(), 1e-4);
+      }
+    }
+  }
+}
+
+// With --sim and no subsample, the cycle columns are kdrt sim's on the same
+// rays; with --sim-rays the subsample is said on stderr and in the JSON.
+TEST_F(TradeCli, CyclesAreKdrtSimsAndASubsampleIsSaid) {
+  const std::string scene = "gen:balls:800 --res 24x24";
+  RunResult r = RunKdrt("trade " + scene + " --formats fp32 --no-area --sim -q --json " + Path("t.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunKdrt("sim " + scene + " --format fp32 -q -o " + Path("s.png") + " --json " + Path("s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json t = ReadJson(Path("t.json")), s = ReadJson(Path("s.json"));
+  EXPECT_EQ(t["formats"][0]["cycles_per_ray"].get<double>(), s["cycles_per_ray"].get<double>());
+  EXPECT_EQ(t["formats"][0]["efficiency"].get<double>(), s["efficiency"].get<double>());
+  EXPECT_EQ(t["formats"][0]["bytes_per_ray"].get<double>(), s["memory"]["bytes_per_ray"].get<double>());
+  EXPECT_EQ(t["sim_stride"].get<int>(), 1);
+
+  r = RunKdrt("trade " + scene + " --formats fp32 --no-area --sim --sim-rays 100 -q --json " + Path("u.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("subsample"), std::string::npos) << r.output;
+  const nlohmann::json u = ReadJson(Path("u.json"));
+  EXPECT_EQ(u["sim_stride"].get<int>(), 6);  // ceil(576 / 100)
+  EXPECT_EQ(u["formats"][0]["sim_rays"].get<int>(), 96);
+  bool said = false;
+  for (const auto& note : u["notes"]) said |= note.get<std::string>().find("subsample") != std::string::npos;
+  EXPECT_TRUE(said) << u["notes"].dump();
+}
+
+TEST_F(TradeCli, RefusesBadInputWithExitOneAndWritesNothing) {
+  fs::create_directories(Path("full"));
+  std::ofstream(Path("full/keep.txt")) << "user data\n";
+  std::ofstream(Path("afile")) << "x\n";
+  const std::string base = "trade gen:balls:200 --res 8x8 --no-area -q --json " + Path("out.json") + " ";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--formats fp99", "fp99"},
+      {"--formats e9m5", "e9m5"},
+      {"--formats e5m24", "e5m24"},
+      {"--formats fp32,fp32", "twice"},
+      {"--formats ,", "empty"},
+      {"--target-mismatch 2", "fraction"},
+      {"--csv /nonexistent-dir/t.csv", "does not exist"},
+      {"--html " + Path("afile"), "not a directory"},
+      {"--html " + Path("full"), "refusing"},
+      {"--html /nonexistent-dir/page", "does not exist"},
+  };
+  const size_t before = FileCount();
+  for (const auto& [option, message] : cases) {
+    SCOPED_TRACE(option);
+    const RunResult r = RunKdrt(base + option);
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(Path("out.json")));
+    EXPECT_EQ(FileCount(), before);
+  }
+  EXPECT_TRUE(fs::exists(Path("full/keep.txt")));
+}
+
+// A second run replaces the page of the first, and leaves no temporaries.
+TEST_F(TradeCli, HtmlPageIsWrittenWholeAndReplacesAnEarlierPage) {
+  const std::string cmd = "trade gen:room:300 --res 16x16 --formats fp32,fp16 --no-area -q --html " + Path("page");
+  ASSERT_EQ(RunKdrt(cmd).exit_code, 0);
+  std::ofstream(Path("page/stale.txt")) << "from before\n";
+  ASSERT_EQ(RunKdrt(cmd).exit_code, 0);
+  for (const char* f : {"index.html", "fp64.png", "fp32.png", "fp16.png", "fp32-diff.png", "fp16-diff.png",
+                        "error-vs-area.svg", "cycles-vs-area.svg"}) {
+    EXPECT_TRUE(fs::exists(Path("page") + "/" + f)) << f;
+  }
+  EXPECT_FALSE(fs::exists(Path("page/stale.txt")));
+  EXPECT_EQ(FileCount(), 1u);  // only page/: no temporary directories beside it
+}
+
+// Counts the pixels of one colour (within 2 of each channel) in an RGB(A) PNG.
+size_t CountColour(const std::string& png, int r, int g, int b) {
+  auto in = OIIO::ImageInput::open(png);
+  if (!in) return 0;
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<unsigned char> px(size_t(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, px.data());
+  size_t n = 0;
+  for (size_t i = 0; i + 2 < px.size(); i += spec.nchannels) {
+    n += std::abs(px[i] - r) <= 2 && std::abs(px[i + 1] - g) <= 2 && std::abs(px[i + 2] - b) <= 2;
+  }
+  return n;
+}
+
+std::string Screenshot(const std::string& page, const std::string& png) {
+  const std::string cmd = "chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1500,2200 "
+                          "--screenshot=" + png + " file://" + page + " > /dev/null 2>&1";
+  return std::system(cmd.c_str()) == 0 && fs::exists(png) ? "" : "chromium failed: " + cmd;
+}
+
+// The page as a person sees it: the table's header colour, the plots'
+// background and their points appear in a headless Chromium screenshot. With
+// the plot files removed, the same check fails (the test can fail).
+TEST_F(TradeCli, ChromiumScreenshotShowsTheTableAndThePlots) {
+  ASSERT_EQ(system("command -v chromium > /dev/null"), 0) << "chromium is missing: run scripts/install-deps.sh";
+  const RunResult r = RunKdrt("trade gen:balls:500 --res 32x32 --formats fp32,bf16,fp16 -q --html " + Path("page"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string page = fs::absolute(Path("page/index.html")).string();
+  ASSERT_EQ(Screenshot(page, Path("shot.png")), "");
+  EXPECT_GT(CountColour(Path("shot.png"), 0x1f, 0x4e, 0x79), 2000u) << "table header";
+  EXPECT_GT(CountColour(Path("shot.png"), 0xf4, 0xf8, 0xfc), 20000u) << "plot backgrounds";
+  EXPECT_GT(CountColour(Path("shot.png"), 0xd6, 0x27, 0x28), 3 * 2 * 50u) << "plot points";
+
+  fs::remove(Path("page/error-vs-area.svg"));
+  fs::remove(Path("page/cycles-vs-area.svg"));
+  ASSERT_EQ(Screenshot(page, Path("shot2.png")), "");
+  EXPECT_LT(CountColour(Path("shot2.png"), 0xf4, 0xf8, 0xfc), 100u);
+  EXPECT_LT(CountColour(Path("shot2.png"), 0xd6, 0x27, 0x28), 10u);
+}
+
+}  // namespace
+}  // namespace kdrt

@@ -1,0 +1,114 @@
+// The pieces of `kdrt trade` on inputs whose answers are known by hand: the
+// accuracy statistics, the PSNR, the recommendation and the SVG plot.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "trade/accuracy.h"
+#include "trade/report.h"
+#include "trade/svg_plot.h"
+#include "trade/trade.h"
+
+namespace kdrt::trade {
+namespace {
+
+Hit MakeHit(float t, uint32_t prim) {
+  Hit h;
+  h.t = t;
+  h.prim = prim;
+  return h;
+}
+
+TEST(TradeAccuracy, CountsAndPercentilesByHand) {
+  // truth: 10 hits at t = 1 (prim i) and 2 misses.
+  std::vector<Hit> truth, hits;
+  for (uint32_t i = 0; i < 10; ++i) truth.push_back(MakeHit(1.0f, i));
+  truth.push_back(Hit{});
+  truth.push_back(Hit{});
+  hits = truth;
+  hits[0] = Hit{};                   // hit -> miss
+  hits[10] = MakeHit(3.0f, 5);       // miss -> hit
+  hits[1] = MakeHit(1.5f, 1);        // t error 0.5
+  hits[2] = MakeHit(1.25f, 7);       // another triangle, t error 0.25
+  const std::vector<float> rgb(3 * truth.size(), 0.5f);
+  const Accuracy a = CompareWithTruth(hits, truth, rgb, rgb);
+  EXPECT_EQ(a.rays, 12u);
+  EXPECT_EQ(a.hitmiss, 2u);
+  EXPECT_EQ(a.prim, 1u);
+  EXPECT_EQ(a.common_hits, 9u);
+  // Relative errors over the 9 common hits: seven 0, 0.25, 0.5.
+  EXPECT_EQ(a.t_rel_p50, 0.0);
+  EXPECT_EQ(a.t_rel_p99, 0.5);
+  EXPECT_EQ(a.t_rel_max, 0.5);
+  EXPECT_DOUBLE_EQ(a.MismatchFraction(), 3.0 / 12.0);
+  EXPECT_TRUE(std::isinf(a.psnr_db));
+}
+
+TEST(TradeAccuracy, PsnrOfOneLevelEverywhereIs48Db) {
+  // Every 8-bit value off by one: MSE 1, PSNR = 20 log10(255) = 48.13 dB.
+  std::vector<float> a(300, 100.0f / 255.0f), b(300, 101.0f / 255.0f);
+  EXPECT_NEAR(Psnr8(a, b), 20.0 * std::log10(255.0), 1e-9);
+  // Values beyond [0,1] clamp, as in the PNG.
+  EXPECT_TRUE(std::isinf(Psnr8(std::vector<float>(3, 2.0f), std::vector<float>(3, 1.0f))));
+}
+
+FormatResult Row(fp::Format f, uint64_t mismatches, uint64_t holes, int64_t cells) {
+  FormatResult r;
+  r.format = f;
+  r.accuracy.rays = 1000;
+  r.accuracy.hitmiss = mismatches;
+  r.holes.holes = holes;
+  if (cells > 0) r.area = Area{cells, 0, 0, "cache", "", 0, {}};
+  return r;
+}
+
+TEST(TradeRecommend, SmallestFormatThatMeetsTheTargetWithoutHoles) {
+  const std::vector<FormatResult> rows = {Row(fp::kFp32, 0, 0, 500), Row(fp::kFp24, 1, 0, 300),
+                                          Row(fp::kBf16, 0, 3, 100), Row(fp::kFp16, 5, 0, 120)};
+  EXPECT_EQ(Recommend(rows, 1e-3), "fp24");  // bf16 has holes, fp16 5e-3 > 1e-3
+  EXPECT_EQ(Recommend(rows, 5e-3), "fp16");
+  EXPECT_EQ(Recommend(rows, 0.0), "fp32");
+  EXPECT_EQ(Recommend({Row(fp::kBf16, 9, 0, 0)}, 1e-3), "");
+  // Equal widths: the smaller area wins.
+  EXPECT_EQ(Recommend({Row(fp::kFp16, 0, 0, 120), Row(fp::kBf16, 0, 0, 100)}, 0.0), "bf16");
+}
+
+TEST(TradeSvg, OnePointPerFormatAndZeroOnTheLogFloor) {
+  PlotSpec spec{"Error", "cells", "mismatch", false, true, "0",
+                {{1000, 0.0, "fp32"}, {500, 1e-3, "fp16"}, {300, 0.2, "bf16<&>"}}};
+  const std::string svg = ScatterSvg(spec);
+  size_t points = 0;
+  for (size_t at = svg.find("class=\"point\""); at != std::string::npos; at = svg.find("class=\"point\"", at + 1)) {
+    ++points;
+  }
+  EXPECT_EQ(points, 3u);
+  EXPECT_NE(svg.find("bf16&lt;&amp;&gt;"), std::string::npos);  // labels are escaped
+  EXPECT_EQ(svg.find("bf16<&>"), std::string::npos);
+  EXPECT_NE(svg.find(">0</text>"), std::string::npos);    // the zero's tick on the log axis
+  EXPECT_NE(svg.find(">1e-3</text>"), std::string::npos);
+  EXPECT_EQ(svg.find("nan"), std::string::npos);
+  EXPECT_EQ(svg.find("inf"), std::string::npos);
+}
+
+TEST(TradeJsonOutput, IdenticalImageIsNullPsnrAndMissingColumnsAreNull) {
+  TradeResult t;
+  t.scene = "s";
+  FormatResult r = Row(fp::kFp32, 0, 0, 0);
+  r.accuracy.psnr_db = std::numeric_limits<double>::infinity();
+  t.formats.push_back(r);
+  const nlohmann::json j = TradeJson(t);
+  const nlohmann::json& f = j["formats"][0];
+  EXPECT_TRUE(f["accuracy"]["psnr_db"].is_null());
+  EXPECT_TRUE(f["accuracy"]["identical_image"].get<bool>());
+  EXPECT_TRUE(f["cycles_per_ray"].is_null());
+  EXPECT_TRUE(f["area"].is_null());
+  EXPECT_TRUE(j["recommended"].is_null());
+  EXPECT_EQ(f["E"], 8);
+  EXPECT_EQ(f["M"], 23);
+}
+
+}  // namespace
+}  // namespace kdrt::trade
