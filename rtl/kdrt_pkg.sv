@@ -1,4 +1,4 @@
-// Constants of the kdrt memory image, version 2: a mirror of
+// Constants of the kdrt memory image, version 3: a mirror of
 // sw/common/image_format.h (the C++ header is the source of truth, and
 // docs/memory-image.md its prose). Every value is little-endian in memory;
 // offsets are in bytes. Also the types shared by the core's units: the
@@ -10,7 +10,7 @@ package kdrt_pkg;
   // A unit uses only some of these.
   /* verilator lint_off UNUSEDPARAM */
 
-  localparam int unsigned ImgVersion      = 2;
+  localparam int unsigned ImgVersion      = 3;
   localparam int unsigned HeaderBytes     = 128;
   localparam int unsigned SectionAlign    = 64;
   localparam int unsigned NodeBytes       = 8;
@@ -37,7 +37,9 @@ package kdrt_pkg;
   localparam int unsigned HdrBoundsMax    = 60;
   localparam int unsigned HdrFrameOrigin  = 72;  // 3 x fp32 (sw/trace/frame.h)
   localparam int unsigned HdrFrameScale   = 84;  // int32: log2 of the frame's scale
-  localparam int unsigned HdrReserved     = 88;  // 10 zero words
+  localparam int unsigned HdrFormatE      = 88;  // the image's number format: a core
+  localparam int unsigned HdrFormatM      = 92;  //   reads the image of its own (E, M)
+  localparam int unsigned HdrReserved     = 96;  // 8 zero words
 
   // The frame's scale s (HdrFrameScale) as the core takes it: signed, and a
   // valid image has |s| <= 160 (kMaxFrameScaleLog2, sw/trace/frame.h), so 9
@@ -46,6 +48,31 @@ package kdrt_pkg;
   // 384 for any 9-bit s: 10 bits hold it (and -k).
   localparam int unsigned FrameScaleWidth = 9;
   localparam int unsigned TScaleWidth     = 10;
+
+  // The layout of an image in a W-bit format (img::ImageLayout in
+  // sw/common/image_format.h; docs/memory-image.md, "Packed formats"): nodes
+  // per 16-byte beat, bits per node, index bits naming the slot in a beat,
+  // bits of a leaf's first list entry, and beats per triangle record. For
+  // W = 32 they give the fp32 records below.
+  function automatic int unsigned img_nodes_per_beat(input int unsigned w);
+    if (w <= 16) img_nodes_per_beat = 3;
+    else img_nodes_per_beat = 2;
+  endfunction
+  function automatic int unsigned img_node_bits(input int unsigned w);
+    if (w <= 16) img_node_bits = 42;
+    else img_node_bits = 64;
+  endfunction
+  function automatic int unsigned img_slot_bits(input int unsigned w);
+    if (w <= 16) img_slot_bits = 2;
+    else img_slot_bits = 1;
+  endfunction
+  function automatic int unsigned img_first_bits(input int unsigned w);
+    if (w <= 16) img_first_bits = 24;
+    else img_first_bits = 32;
+  endfunction
+  function automatic int unsigned img_tri_beats(input int unsigned w);
+    img_tri_beats = (9 * w + 32 + 127) / 128;
+  endfunction
 
   // Node word 1, bits [1:0]: split axis 0/1/2 or NodeLeaf; bits [31:2]: the
   // above child's index (inner node) or the triangle count (leaf).

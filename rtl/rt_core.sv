@@ -77,8 +77,14 @@ module rt_core #(
 
   localparam int unsigned CountW = TriIdxWidth + 1;
   localparam int unsigned KW = kdrt_pkg::TScaleWidth;
-  localparam int unsigned NodeShift = $clog2(kdrt_pkg::NodeBytes);
   localparam int unsigned NodeOffW = $clog2(16 * NodeLineBeats);
+  // The image of this format (docs/memory-image.md, "Packed formats"): node
+  // slots in 16-byte beats, triangle records of whole beats.
+  localparam int unsigned NodeBits = kdrt_pkg::img_node_bits(W);
+  localparam int unsigned SlotBits = kdrt_pkg::img_slot_bits(W);
+  localparam bit ThreeSlots = kdrt_pkg::img_nodes_per_beat(W) == 3;
+  localparam int unsigned FirstBits = kdrt_pkg::img_first_bits(W);
+  localparam int unsigned TriBeats = kdrt_pkg::img_tri_beats(W);
 
   // ------------------------------------------------------------ thread table
   logic [RayIdWidth-1:0]   ray_id_q [Threads];
@@ -137,18 +143,38 @@ module rt_core #(
   );
   assign fetch_fire = fetch_valid && node_req_ready;
 
-  // A node: word 0 the split or first list entry, word 1 the axis (or
-  // NodeLeaf) and the above child's index (or the leaf's triangle count).
+  // A node: bits [W-1:0] the split, then the axis (or NodeLeaf), then the
+  // above child's index; a leaf reads {above bits, split bits} as its count
+  // (high) and first list entry (low FirstBits). Node i is slot i % 2^SlotBits
+  // of beat i / 2^SlotBits; its below child is the next slot.
   logic                         node_valid, node_ready, node_fire, node_is_leaf;
   logic [NodeLineBeats*128-1:0] node_line;
   logic [ThW-1:0]               node_tag;
   logic [AddrWidth-1:0]         node_addr;
-  logic [31:0]                  node_w0;
-  logic [kdrt_pkg::NodeIndexBits-1:0] node_index;
+  logic [NodeBits-1:0]          node_bits;
+  logic [W-1:0]                 node_lo;
+  logic [NodeBits-W-3:0]        node_hi;
+  logic [NodeBits-3:0]          node_payload;  // a leaf's {count, first}
   logic [1:0]                   node_axis;
-  assign node_addr = node_base_i + (AddrWidth'(node_q[node_tag]) << NodeShift);
-  assign {node_index, node_axis, node_w0} = node_line[8 * kdrt_pkg::NodeBytes * node_addr[NodeOffW-1:NodeShift] +: 64];
+  logic [31:0]                  node_split, node_first;
+  logic [NodeBits-FirstBits-3:0] node_count;
+  logic [NodeIdxWidth-1:0]      node_below;
+  assign node_addr = node_base_i + (AddrWidth'(node_q[node_tag]) >> SlotBits << 4);
+  assign node_bits = node_line[128 * node_addr[NodeOffW-1:4] + NodeBits * node_q[node_tag][SlotBits-1:0] +: NodeBits];
+  assign {node_hi, node_axis, node_lo} = node_bits;
   assign node_is_leaf = node_axis == kdrt_pkg::NodeLeaf;
+  assign node_payload = {node_hi, node_lo};
+  assign node_first = 32'(node_payload[FirstBits-1:0]);
+  assign node_count = node_payload[NodeBits-3:FirstBits];
+  assign node_below = (ThreeSlots && node_q[node_tag][1:0] == 2'd2) ? node_q[node_tag] + NodeIdxWidth'(2)
+                                                                          : node_q[node_tag] + 1'b1;
+  // The units load binary32: a narrower split widens exactly (the unit's
+  // load rounds it back to itself).
+  if (W == 32) begin : g_split32
+    assign node_split = node_lo;
+  end else begin : g_split_widen
+    fp_to_f32 #(.E(E), .M(M)) u_widen (.a_i(node_lo), .f32_o(node_split));
+  end
 
   logic                    trav_in_ready, trav_valid, trav_push, trav_overflow, stack_full;
   logic [ThW-1:0]          trav_tag;
@@ -159,8 +185,8 @@ module rt_core #(
   assign node_fire = node_valid && node_ready;
   rt_trav_unit #(.E(E), .M(M), .TagWidth(ThW), .NodeIdxWidth(NodeIdxWidth)) u_trav (
     .clk_i, .rst_ni, .in_valid_i(node_valid && !node_is_leaf), .in_ready_o(trav_in_ready),
-    .in_tag_i(node_tag), .in_split_i(node_w0), .in_below_i(node_q[node_tag] + 1'b1),
-    .in_above_i(NodeIdxWidth'(node_index)), .in_o_i(o_q[node_tag][W*node_axis +: W]),
+    .in_tag_i(node_tag), .in_split_i(node_split), .in_below_i(node_below),
+    .in_above_i(NodeIdxWidth'(node_hi)), .in_o_i(o_q[node_tag][W*node_axis +: W]),
     .in_d_i(d_q[node_tag][W*node_axis +: W]), .in_inv_i(inv_q[node_tag][W*node_axis +: W]),
     .in_t0_i(t0_q[node_tag]), .in_t1_i(t1_q[node_tag]),
     .out_valid_o(trav_valid), .out_ready_i(1'b1), .out_tag_o(trav_tag), .out_action_o(trav_action),
@@ -191,11 +217,19 @@ module rt_core #(
   logic [AddrWidth-1:0]   list_req_addr;
   logic                   tri_valid, tri_fire;
   logic [TriIdxWidth-1:0] tri_id;
-  logic [8*kdrt_pkg::TriangleBytes-1:0] tri_record;
-  assign job_push = node_fire && node_is_leaf && node_index != '0;
+  logic [128*TriBeats-1:0] tri_record;
+  logic [kdrt_pkg::TriVertexBits-1:0] tri_vertices;  // binary32, as the unit loads them
+  assign job_push = node_fire && node_is_leaf && node_count != '0;
+  if (W == 32) begin : g_tri32
+    assign tri_vertices = tri_record[kdrt_pkg::TriVertexBits-1:0];
+  end else begin : g_tri_widen
+    for (genvar k = 0; k < 9; k++) begin : g_coord
+      fp_to_f32 #(.E(E), .M(M)) u_widen (.a_i(tri_record[W*k +: W]), .f32_o(tri_vertices[32*k +: 32]));
+    end
+  end
   rt_list_unit #(.TagWidth(ThW), .Jobs(Threads), .CountWidth(CountW), .AddrWidth(AddrWidth)) u_list (
     .clk_i, .rst_ni, .list_base_i, .job_valid_i(job_push), .job_ready_o(), .job_tag_i(node_tag),
-    .job_first_i(node_w0), .job_count_i(CountW'(node_index)), .req_valid_o(list_req_valid),
+    .job_first_i(node_first), .job_count_i(CountW'(node_count)), .req_valid_o(list_req_valid),
     .req_ready_i(list_req_ready), .req_tag_o(list_req_tag), .req_addr_o(list_req_addr)
   );
 
@@ -209,7 +243,7 @@ module rt_core #(
     .in_id_i(32'(tri_id)), .in_o_i(o_q[tri_tag]), .in_kx_i(axes_q[tri_tag][1:0]),
     .in_ky_i(axes_q[tri_tag][3:2]), .in_kz_i(axes_q[tri_tag][5:4]), .in_sx_i(shear_q[tri_tag][0 +: W]),
     .in_sy_i(shear_q[tri_tag][W +: W]), .in_sz_i(shear_q[tri_tag][2*W +: W]), .in_tmin_i(tmin_q[tri_tag]),
-    .in_tmax_i(leaf_tmax_q[tri_tag]), .in_tri_i(tri_record[kdrt_pkg::TriVertexBits-1:0]),
+    .in_tmax_i(leaf_tmax_q[tri_tag]), .in_tri_i(tri_vertices),
     .out_valid_o(isect_valid), .out_ready_i(1'b1), .out_tag_o(isect_tag), .out_id_o(isect_id),
     .out_hit_o(isect_hit), .out_t_o(isect_t), .out_u_o(isect_u), .out_v_o(isect_v)
   );
@@ -232,10 +266,11 @@ module rt_core #(
   logic       mem_wait;
   rt_mem_system #(.AddrWidth(AddrWidth), .TagWidth(ThW), .TriIdxWidth(TriIdxWidth),
                   .NodeCacheLines(NodeCacheLines), .ListCacheLines(ListCacheLines), .TriCacheLines(TriCacheLines),
-                  .NodeLineBeats(NodeLineBeats), .ListLineBeats(ListLineBeats), .CacheMshrs(CacheMshrs)) u_mem (
+                  .NodeLineBeats(NodeLineBeats), .ListLineBeats(ListLineBeats), .CacheMshrs(CacheMshrs),
+                  .TriLineBeats(TriBeats)) u_mem (
     .clk_i, .rst_ni, .tri_base_i,
     .node_req_valid_i(fetch_valid), .node_req_ready_o(node_req_ready), .node_req_tag_i(fetch_idx),
-    .node_req_addr_i(node_base_i + (AddrWidth'(node_q[fetch_idx]) << NodeShift)),
+    .node_req_addr_i(node_base_i + (AddrWidth'(node_q[fetch_idx]) >> SlotBits << 4)),
     .node_resp_valid_o(node_valid), .node_resp_ready_i(node_ready), .node_resp_tag_o(node_tag),
     .node_resp_line_o(node_line),
     .list_req_valid_i(list_req_valid), .list_req_ready_o(list_req_ready), .list_req_tag_i(list_req_tag),
@@ -264,7 +299,7 @@ module rt_core #(
     .alloc_idx_o(alloc_idx), .alloc_i(ray_fire), .setup_i(setup_fire), .setup_idx_i(setup_tag),
     .clip_i(clip_valid), .clip_idx_i(clip_tag), .clip_miss_i(clip_miss), .fetch_i(fetch_fire),
     .fetch_idx_i(fetch_idx), .node_i(node_fire), .node_idx_i(node_tag), .node_leaf_i(node_is_leaf),
-    .node_job_i(job_push), .node_tests_i(CountW'(node_index)), .trav_i(trav_valid), .trav_idx_i(trav_tag),
+    .node_job_i(job_push), .node_tests_i(CountW'(node_count)), .trav_i(trav_valid), .trav_idx_i(trav_tag),
     .trav_overflow_i(trav_overflow), .issue_i(tri_fire), .issue_idx_i(tri_tag), .retire_i(isect_valid),
     .retire_idx_i(isect_tag), .exit_i(exit_valid), .exit_idx_i(exit_idx), .exit_done_i(exit_done),
     .out_i(out_fire), .out_idx_i(out_idx)

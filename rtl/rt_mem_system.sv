@@ -23,7 +23,9 @@ module rt_mem_system #(
   parameter int unsigned NodeLineBeats = 2,
   parameter int unsigned ListLineBeats = 2,
   parameter int unsigned CacheMshrs = 8,
-  localparam int unsigned TriBits = 8 * kdrt_pkg::TriangleBytes
+  // Beats of a triangle record: kdrt_pkg::img_tri_beats of the format (3 for fp32).
+  parameter int unsigned TriLineBeats = 3,
+  localparam int unsigned TriBits = 128 * TriLineBeats
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -109,11 +111,11 @@ module rt_mem_system #(
   assign entry_fire_o = list_resp_valid && tri_req_ready;
 
   // A triangle line is one record, named by the triangle id.
-  rt_cache #(.Lines(TriCacheLines), .LineBeats(kdrt_pkg::TriangleBytes / 16), .KeyWidth(TriIdxWidth),
+  rt_cache #(.Lines(TriCacheLines), .LineBeats(TriLineBeats), .KeyWidth(TriIdxWidth),
              .AddrWidth(AddrWidth), .TagWidth(TagWidth + TriIdxWidth), .Mshrs(CacheMshrs)) u_tri_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_resp_valid), .req_ready_o(tri_req_ready), .req_key_i(entry_tri),
-    .req_addr_i(tri_base_i + AddrWidth'(entry_tri) * AddrWidth'(kdrt_pkg::TriangleBytes)),
+    .req_addr_i(tri_base_i + (AddrWidth'(entry_tri) << 4) * AddrWidth'(TriLineBeats)),
     .req_tag_i({entry_tag, entry_tri}),
     .resp_valid_o(tri_resp_valid_o), .resp_ready_i(tri_resp_ready_i), .resp_data_o(tri_resp_o),
     .resp_tag_o({tri_resp_tag_o, tri_resp_id_o}),

@@ -169,9 +169,8 @@ void CoreHarness::CheckHit(uint64_t cycle, uint32_t id, const Hit& got, bool ove
   s << "  RTL:   " << HitText(got) << ", overflow 0\n";
   s << "  model node path (" << path.size() << " nodes, " << counters.leaves << " leaves, " << counters.tri_tests
     << " triangle tests):";
-  const img::Node* nodes = image_.nodes();
   for (uint32_t n : path) {
-    s << " " << n << (nodes[n].IsLeaf() ? "L" : "");
+    s << " " << n << (image_.node(n).IsLeaf() ? "L" : "");
   }
   s << "\n  (L = leaf)";
   throw SimFailure(s.str());

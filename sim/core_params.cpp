@@ -100,14 +100,14 @@ SceneRequirements DeriveRequirements(const ImageView& image) {
   const img::Header& h = image.header();
   SceneRequirements r;
   r.stack_depth = std::max<int>(1, static_cast<int>(h.max_depth));
-  r.node_idx_bits = BitsFor(h.node_count > 0 ? h.node_count - 1 : 0);
+  r.node_idx_bits = BitsFor(h.node_count > 0 ? image.layout().IndexOfPosition(h.node_count - 1) : 0);
   const uint64_t max_tri_index = std::max<uint64_t>(h.tri_count, h.list_count);
   r.tri_idx_bits = BitsFor(max_tri_index > 0 ? max_tri_index - 1 : 0);
   r.image_bytes = image.size();
   r.addr_bits = BitsFor(r.image_bytes > 0 ? r.image_bytes - 1 : 0);
-  r.node_bytes = uint64_t{h.node_count} * img::kNodeBytes;
+  r.node_bytes = image.layout().NodeSectionBytes(h.node_count);
   r.list_bytes = uint64_t{h.list_count} * img::kListEntryBytes;
-  r.tri_bytes = uint64_t{h.tri_count} * img::kTriangleBytes;
+  r.tri_bytes = uint64_t{h.tri_count} * image.layout().TriangleBytes();
   return r;
 }
 

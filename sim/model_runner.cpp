@@ -175,8 +175,15 @@ ModelRun RunModel(const ModelLocation& loc, const CoreConfig& config, const std:
   return out;
 }
 
-ModelRun Simulate(const std::vector<uint8_t>& image, const std::vector<Ray>& rays, fp::Format format,
+std::vector<uint8_t> CoreImage(const std::vector<uint8_t>& fp32_image, fp::Format format) {
+  const img::ImageLayout layout = LayoutFor(format);
+  if (layout.IsFp32()) return fp32_image;
+  return RepackImage(ImageView(fp32_image), layout);
+}
+
+ModelRun Simulate(const std::vector<uint8_t>& fp32_image, const std::vector<Ray>& rays, fp::Format format,
                   RunOptions run) {
+  const std::vector<uint8_t> image = CoreImage(fp32_image, format);
   const SceneRequirements req = DeriveRequirements(ImageView(image));
   const ConfigChoice choice = ChooseConfig(format, req, ConfigOverrides{}, run.mem_size, run.allow_overflow);
   const ModelLocation loc = LocateModel(choice);

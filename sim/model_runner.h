@@ -41,8 +41,14 @@ struct ModelRun {
 ModelRun RunModel(const ModelLocation& location, const CoreConfig& config, const std::vector<uint8_t>& image,
                   const std::vector<Ray>& rays, const RunOptions& run, const std::string& trace_path);
 
+// The memory image the RTL core of `format` reads: the fp32 image packed in
+// the format's width (docs/memory-image.md, "Packed formats"); fp32's is the
+// fp32 image itself.
+std::vector<uint8_t> CoreImage(const std::vector<uint8_t>& fp32_image, fp::Format format);
+
 // The whole way for a caller without options: what the image requires, the
-// model of `format` that covers it (built when missing), and its run.
+// model of `format` that covers it (built when missing), and its run on the
+// image of its format (CoreImage of the fp32 `image`).
 ModelRun Simulate(const std::vector<uint8_t>& image, const std::vector<Ray>& rays, fp::Format format,
                   RunOptions run);
 

@@ -1,12 +1,18 @@
-// The kdrt memory image, version 2: the bytes a hardware core reads.
+// The kdrt memory image, version 3: the bytes a hardware core reads.
 // docs/memory-image.md is the prose specification of this header; the RTL
 // package (rtl/kdrt_pkg.sv) mirrors the constants. Everything is little-endian,
-// every float is IEEE binary32, every section starts on a 64-byte boundary.
+// every section starts on a 64-byte boundary.
 //
 //   offset 0    Header (128 bytes)
-//   node_offset nodes, node_count x 8 bytes, root = node 0
+//   node_offset nodes, packed into 16-byte beats, root = node 0
 //   list_offset leaf lists, list_count x uint32 (triangle ids)
-//   tri_offset  triangles, tri_count x 48 bytes, indexed by triangle id
+//   tri_offset  triangles, tri_count records of whole beats, by triangle id
+//
+// Split positions and vertices are stored in the image's number format
+// (header format_e, format_m; ImageLayout below): an fp32 image holds
+// binary32 values in 8-byte nodes and 48-byte triangles, a narrower format
+// packs them (e.g. fp16: 3 nodes per beat, 32-byte triangles). The header's
+// bounds and frame are binary32 in every image.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +21,7 @@
 namespace kdrt::img {
 
 inline constexpr char kMagic[8] = {'K', 'D', 'R', 'T', 'I', 'M', 'G', '\0'};
-inline constexpr uint32_t kVersion = 2;
+inline constexpr uint32_t kVersion = 3;
 inline constexpr uint32_t kHeaderBytes = 128;
 inline constexpr uint32_t kSectionAlign = 64;
 inline constexpr uint32_t kNodeBytes = 8;
@@ -38,7 +44,9 @@ struct Header {
   float bounds_max[3];
   float frame_origin[3];  // world = framed * 2^-frame_scale_log2 + frame_origin
   int32_t frame_scale_log2;
-  uint32_t reserved[10];  // zero
+  uint32_t format_e;      // the number format of splits and vertices:
+  uint32_t format_m;      //   exponent and mantissa bits (8, 23 = binary32)
+  uint32_t reserved[8];   // zero
 };
 static_assert(sizeof(Header) == kHeaderBytes, "header layout");
 
@@ -78,6 +86,64 @@ static_assert(sizeof(Node) == kNodeBytes, "node layout");
 
 // 30 bits are left for a child index or a leaf's count.
 inline constexpr uint32_t kMaxIndex = (1u << 30) - 1;
+
+// Where a format's values go. W = 1 + e + m bits per value.
+//
+// Nodes: NodesPerBeat() nodes of NodeBits() bits in each 16-byte beat (node
+// k of a beat at bits [k * NodeBits, (k + 1) * NodeBits), little-endian), a
+// node never straddling two beats. W > 16: 2 nodes of 64 bits; W <= 16: 3
+// nodes of 42 bits. Within a node, with H = NodeBits - W - 2:
+//   bits [W-1:0]           inner: the split (format bits)
+//   bits [W+1:W]           the axis 0/1/2, or kLeaf
+//   bits [NodeBits-1:W+2]  inner: the above child's index (H bits)
+// A leaf reads the other NodeBits - 2 bits as one number {bits above the
+// axis, bits below it}: its low FirstBits() are the first list entry, the
+// rest the count. For W = 32 this is exactly img::Node (word 0 the split or
+// first entry, word 1 axis | above << 2 or kLeaf | count << 2).
+//
+// Node indices address slots: node i is slot i % 4 of beat i / 4 when 3
+// nodes share a beat (slot 3 is never used), slot i % 2 of beat i / 2 when
+// 2 do. The below child is the next slot, NextNode(i).
+//
+// Triangles: TriangleBeats() beats per record: the 9 coordinates v0.x,
+// v0.y, v0.z, v1.x, ..., v2.z at bits [k * W, (k + 1) * W), then the
+// triangle id (32 bits) at bit 9 * W, zeros after. For W = 32 this is
+// img::TriangleRecord.
+struct ImageLayout {
+  int e = 8, m = 23;
+
+  int Width() const { return 1 + e + m; }
+  int NodesPerBeat() const { return Width() <= 16 ? 3 : 2; }
+  int NodeBits() const { return NodesPerBeat() == 3 ? 42 : 64; }
+  int AboveBits() const { return NodeBits() - Width() - 2; }
+  int FirstBits() const { return NodesPerBeat() == 3 ? 24 : 32; }
+  int CountBits() const { return NodeBits() - 2 - FirstBits(); }
+  // Index bits that select the slot within a beat.
+  int SlotBits() const { return NodesPerBeat() == 3 ? 2 : 1; }
+  int TriangleBeats() const { return (9 * Width() + 32 + 127) / 128; }
+  uint32_t TriangleBytes() const { return 16u * static_cast<uint32_t>(TriangleBeats()); }
+  // The largest above-child index and leaf count the fields hold.
+  uint64_t MaxAbove() const { return AboveBits() >= 30 ? kMaxIndex : (uint64_t{1} << AboveBits()) - 1; }
+  uint64_t MaxFirst() const { return (uint64_t{1} << FirstBits()) - 1; }
+  uint64_t MaxCount() const { return CountBits() >= 30 ? kMaxIndex : (uint64_t{1} << CountBits()) - 1; }
+
+  // The index of the p-th node in layout order, and back.
+  uint32_t IndexOfPosition(uint32_t p) const {
+    return NodesPerBeat() == 3 ? (p / 3) << 2 | (p % 3) : p;
+  }
+  uint32_t PositionOfIndex(uint32_t i) const { return NodesPerBeat() == 3 ? (i >> 2) * 3 + (i & 3) : i; }
+  bool ValidIndex(uint32_t i) const { return NodesPerBeat() != 3 || (i & 3) != 3; }
+  uint32_t NextNode(uint32_t i) const { return NodesPerBeat() == 3 && (i & 3) == 2 ? i + 2 : i + 1; }
+  // Byte offset of node i's beat within the node section, and its bit offset there.
+  uint64_t NodeBeatOffset(uint32_t i) const { return uint64_t{i >> SlotBits()} * 16; }
+  int NodeBitOffset(uint32_t i) const { return static_cast<int>(i & ((1u << SlotBits()) - 1)) * NodeBits(); }
+  // Bytes of the node section for n nodes.
+  uint64_t NodeSectionBytes(uint64_t n) const {
+    return NodesPerBeat() == 3 ? (n + 2) / 3 * 16 : n * 8;
+  }
+
+  bool IsFp32() const { return e == 8 && m == 23; }
+};
 
 // Triangle record: the three vertices in file order, as the watertight and
 // the Moller-Trumbore tests both read them, then the triangle id (a check for

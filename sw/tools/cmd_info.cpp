@@ -1,5 +1,6 @@
 // kdrt info: tree statistics, memory image size and the precision the scene
 // requires (trace/precision.h) for its rays: the camera's, or --rays.
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
@@ -10,6 +11,7 @@
 #include "setup/trace_outputs.h"
 #include "tools/scene_options.h"
 #include "trace/output_file.h"
+#include "trace/memory_image.h"
 #include "trace/precision.h"
 
 namespace kdrt::cli {
@@ -20,8 +22,21 @@ struct InfoArgs {
   std::string json;
   std::string image_out;
   std::string rays;
+  std::string format = "fp32";
   int threads = 0;
 };
+
+// The image of each format: section sizes and the total.
+nlohmann::json ImageSizes(const std::vector<uint8_t>& bytes) {
+  const ImageView v(bytes);
+  const img::Header& h = v.header();
+  return {{"bytes", bytes.size()},
+          {"node_bytes", v.layout().NodeSectionBytes(h.node_count)},
+          {"list_bytes", uint64_t{h.list_count} * img::kListEntryBytes},
+          {"tri_bytes", uint64_t{h.tri_count} * v.layout().TriangleBytes()},
+          {"nodes_per_beat", v.layout().NodesPerBeat()},
+          {"triangle_bytes", v.layout().TriangleBytes()}};
+}
 
 // "exponent bits set by A, mantissa bits by B": the criteria at the minimum.
 std::string LimitingCriteria(const PrecisionRequirement& req) {
@@ -37,9 +52,25 @@ std::string LimitingCriteria(const PrecisionRequirement& req) {
 }
 
 int Run(const InfoArgs& args) {
+  const fp::Format format = fp::ParseFormat(args.format);
+  const img::ImageLayout layout = LayoutFor(format);
   const PreparedScene p = PrepareScene(args.scene);
   const RaySet ray_set = MakeRays(p.scene, args.rays, "", "");
-  const PrecisionRequirement req = AnalyzePrecision(ImageView(p.image), ray_set.rays, args.threads);
+  const ImageView fp32_image(p.image);
+  const PrecisionRequirement req = AnalyzePrecision(fp32_image, ray_set.rays, args.threads);
+  // The image of every preset and of --format, packed in its width.
+  std::vector<fp::Format> formats = fp::Presets();
+  if (!format.IsFp64() && std::find(formats.begin(), formats.end(), format) == formats.end()) {
+    formats.push_back(format);
+  }
+  nlohmann::json images = nlohmann::json::object();
+  std::vector<uint8_t> chosen = p.image;
+  for (const fp::Format& f : formats) {
+    const img::ImageLayout l = LayoutFor(f);
+    std::vector<uint8_t> bytes = l.IsFp32() ? p.image : RepackImage(fp32_image, l);
+    images[f.Name()] = ImageSizes(bytes);
+    if (l.e == layout.e && l.m == layout.m) chosen = std::move(bytes);
+  }
   OutputSet outputs;
   if (!args.json.empty()) {
     nlohmann::json j = {{"command", "info"},
@@ -47,19 +78,26 @@ int Run(const InfoArgs& args) {
                         {"triangles", p.scene.triangles.size()},
                         {"accel", SplitMethodName(args.scene.build.method)},
                         {"tree", TreeStatsJson(p.tree.stats)},
-                        {"image_bytes", p.image.size()},
+                        {"image_format", fp::Format{layout.e, layout.m}.Name()},
+                        {"image_bytes", chosen.size()},
+                        {"images", images},
                         {"precision", req.Json()}};
     AddJsonOutput(outputs, args.json, j);
   }
   if (!args.image_out.empty()) {
     outputs.Add(args.image_out, [&](const std::string& tmp) {
       std::ofstream f(tmp, std::ios::binary);
-      f.write(reinterpret_cast<const char*>(p.image.data()), static_cast<std::streamsize>(p.image.size()));
+      f.write(reinterpret_cast<const char*>(chosen.data()), static_cast<std::streamsize>(chosen.size()));
       if (!f) throw InputError(args.image_out, 0, "cannot write memory image");
     });
   }
   outputs.Commit();
   PrintTreeStats(p);
+  std::printf("image by format");
+  for (const fp::Format& f : formats) {
+    std::printf(" %s %llu", f.Name().c_str(), images[f.Name()]["bytes"].get<unsigned long long>());
+  }
+  std::printf(" bytes (splits and vertices in the format's width)\n");
   std::printf("minimal format  %s\n", req.MinimalFormat().c_str());
   std::printf("precision      for %llu %s (%llu hits in fp64); %s\n", static_cast<unsigned long long>(req.rays),
               args.rays.empty() ? "camera rays" : "rays", static_cast<unsigned long long>(req.hit_tests),
@@ -75,6 +113,10 @@ Runner AddInfoCommand(CLI::App& app) {
   AddSceneOptions(*cmd, args->scene);
   cmd->add_option("--json", args->json, "Machine-readable statistics");
   cmd->add_option("--image", args->image_out, "Write the memory image (docs/memory-image.md) to this file");
+  cmd->add_option("--format", args->format,
+                  "Number format of the image --image writes and image_bytes reports: splits and vertices stored "
+                  "in its width (" + fp::PresetNames() + ", eXmY; fp64 reads the fp32 image)")
+      ->capture_default_str();
   cmd->add_option("--rays", args->rays,
                   "Derive the precision requirement for this ray file (KDRTRAYS) instead of the camera rays");
   cmd->add_option("--threads", args->threads, "Threads of the precision analysis (0: all cores)");

@@ -29,6 +29,7 @@ struct RenderArgs {
   std::string json;
   std::string isect = "watertight";
   std::string format = "fp32";
+  std::string image_format = "native";
   std::string rays;
   std::string camera;
   int threads = 0;
@@ -37,21 +38,31 @@ struct RenderArgs {
 };
 
 int Run(const RenderArgs& args) {
+  const fp::Format format = fp::ParseFormat(args.format);
+  if (args.image_format != "native" && args.image_format != "fp32") {
+    throw InputError("--image-format " + args.image_format + ": expected native or fp32");
+  }
   PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);
+  // The image the tracer reads: the format's own packed image (splits and
+  // vertices rounded once, as a load from the fp32 image rounds them: the
+  // hits are the same), or the fp32 image.
+  const img::ImageLayout layout = args.image_format == "fp32" ? img::ImageLayout{} : LayoutFor(format);
+  const std::vector<uint8_t> packed = layout.IsFp32() ? std::vector<uint8_t>{} : RepackImage(image, layout);
+  const ImageView traced = layout.IsFp32() ? image : ImageView(packed);
 
   const RaySet ray_set = MakeRays(p.scene, args.rays, args.camera, args.res);
   const std::vector<Ray>& rays = ray_set.rays;
   const int width = ray_set.width, height = ray_set.height;
 
   TraceOptions to;
-  to.format = fp::ParseFormat(args.format);
+  to.format = format;
   to.isect = ParseIsectMethod(args.isect);
   to.threads = args.threads;
   to.progress = !args.quiet && isatty(STDERR_FILENO) && rays.size() >= 1000000;
   const PrecisionCheck check = CheckPrecision(image, rays, to.format, args.strict, args.threads);
   TraceStats ts;
-  const std::vector<Hit> hits = TraceRays(image, rays, to, &ts);
+  const std::vector<Hit> hits = TraceRays(traced, rays, to, &ts);
 
   const double n = static_cast<double>(rays.size());
   nlohmann::json j = {
@@ -64,7 +75,9 @@ int Run(const RenderArgs& args) {
       {"width", width},
       {"height", height},
       {"tree", TreeStatsJson(p.tree.stats)},
-      {"image_bytes", p.image.size()},
+      {"image_format", fp::Format{layout.e, layout.m}.Name()},
+      {"image_bytes", traced.size()},
+      {"fp32_image_bytes", p.image.size()},
       {"rays", ts.rays},
       {"hits", ts.hits},
       {"trace_seconds", ts.seconds},
@@ -86,6 +99,9 @@ int Run(const RenderArgs& args) {
     PrintTreeStats(p);
     std::printf("format         %s, %s test (minimal format %s)\n", args.format.c_str(), IsectMethodName(to.isect),
                 check.requirement.MinimalFormat().c_str());
+    std::printf("memory image   %zu bytes (%s", traced.size(), fp::Format{layout.e, layout.m}.Name().c_str());
+    if (!layout.IsFp32()) std::printf("; the fp32 image: %zu", p.image.size());
+    std::printf(")\n");
     std::printf("rays           %llu (%dx%d), %llu hits (%.1f %%)\n", static_cast<unsigned long long>(ts.rays), width,
                 height, static_cast<unsigned long long>(ts.hits), 100.0 * ts.hits / n);
     std::printf("per ray        %.2f nodes, %.2f leaves, %.2f triangle tests\n", ts.totals.nodes / n,
@@ -111,6 +127,10 @@ Runner AddRenderCommand(CLI::App& app) {
   cmd->add_option("--isect", args->isect, "Ray/triangle test: watertight or moller")->capture_default_str();
   cmd->add_option("--format", args->format, "Number format of traversal and intersection: " + fp::PresetNames() +
                                                             ", eXmY, or fp64 (native double, the accuracy reference)")
+      ->capture_default_str();
+  cmd->add_option("--image-format", args->image_format,
+                  "Memory image the tracer reads: native (splits and vertices stored in --format's width; "
+                  "fp64 reads the fp32 image) or fp32 (every format rounds on load). The hits are the same")
       ->capture_default_str();
   cmd->add_flag("--strict", args->strict,
                 "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");

@@ -52,7 +52,9 @@ int RunSim(SimArgs args) {
   }
   const PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);
-  const sim::SceneRequirements req = sim::DeriveRequirements(image);
+  // The core reads the image of its own format (docs/memory-image.md).
+  const std::vector<uint8_t> core_image = sim::CoreImage(p.image, format);
+  const sim::SceneRequirements req = sim::DeriveRequirements(ImageView(core_image));
   const sim::ConfigChoice choice =
       sim::ChooseConfig(format, req, args.overrides, args.run.mem_size, args.run.allow_overflow);
   const sim::ModelLocation loc = sim::LocateModel(choice);
@@ -80,7 +82,7 @@ int RunSim(SimArgs args) {
   if (!args.run.trace.empty()) outputs.Add(args.run.trace, [&](const std::string& tmp) { trace_tmp = tmp; });
   args.run.mem_size = choice.mem_size;
   args.run.progress = args.run.progress || (!args.quiet && isatty(STDERR_FILENO));
-  const sim::ModelRun run = sim::RunModel(loc, choice.config, p.image, ray_set.rays, args.run, trace_tmp);
+  const sim::ModelRun run = sim::RunModel(loc, choice.config, core_image, ray_set.rays, args.run, trace_tmp);
   if (run.exit_code != 0) {
     if (!trace_tmp.empty() && std::rename(trace_tmp.c_str(), args.run.trace.c_str()) == 0) {
       std::fprintf(stderr, "kdrt sim: waveform up to the failure in %s\n", args.run.trace.c_str());

@@ -5,26 +5,98 @@
 #include <cstring>
 
 #include "common/error.h"
+#include "fp/format.h"
 
 namespace kdrt {
 namespace {
 
 uint64_t AlignUp(uint64_t x) { return (x + img::kSectionAlign - 1) / img::kSectionAlign * img::kSectionAlign; }
 
+// Little-endian bit fields of up to 64 bits at any bit offset.
+uint64_t GetBits(const uint8_t* p, uint64_t bit, int n) {
+  uint64_t v = 0;
+  for (int k = 0; k < n; ++k) {
+    const uint64_t b = bit + static_cast<uint64_t>(k);
+    v |= uint64_t{(p[b >> 3] >> (b & 7)) & 1u} << k;
+  }
+  return v;
+}
+
+void SetBits(uint8_t* p, uint64_t bit, int n, uint64_t v) {
+  for (int k = 0; k < n; ++k) {
+    const uint64_t b = bit + static_cast<uint64_t>(k);
+    const uint8_t mask = static_cast<uint8_t>(1u << (b & 7));
+    if ((v >> k) & 1u) {
+      p[b >> 3] |= mask;
+    } else {
+      p[b >> 3] &= static_cast<uint8_t>(~mask);
+    }
+  }
+}
+
+// A coordinate as the image stores it: binary32 bits as they are in an fp32
+// image (the datapath's load does the rounding, as before version 3), else
+// rounded once to the format, exactly as the datapath's load would.
+uint32_t StoredBits(const img::ImageLayout& layout, float x) {
+  if (layout.IsFp32()) {
+    uint32_t bits;
+    std::memcpy(&bits, &x, 4);
+    return bits;
+  }
+  return fp::FromFloat(fp::Format{layout.e, layout.m}, x);
+}
+
+float LoadedFloat(const img::ImageLayout& layout, uint32_t bits) {
+  if (layout.IsFp32()) {
+    float x;
+    std::memcpy(&x, &bits, 4);
+    return x;
+  }
+  return fp::ToFloat(fp::Format{layout.e, layout.m}, bits);
+}
+
 }  // namespace
 
-std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, const Frame& frame) {
+img::ImageLayout LayoutFor(const fp::Format& format) {
+  if (format.IsFp64()) return img::ImageLayout{};
+  fp::MakeFormat(format.e, format.m);  // throws for a format with no encoding
+  return img::ImageLayout{format.e, format.m};
+}
+
+std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, const Frame& frame,
+                                      const img::ImageLayout& layout) {
   img::Header h{};
   std::memcpy(h.magic, img::kMagic, sizeof(h.magic));
   h.version = img::kVersion;
+  h.format_e = static_cast<uint32_t>(layout.e);
+  h.format_m = static_cast<uint32_t>(layout.m);
   const uint64_t node_offset = AlignUp(img::kHeaderBytes);
-  const uint64_t list_offset = AlignUp(node_offset + uint64_t{img::kNodeBytes} * tree.nodes.size());
+  const uint64_t list_offset = AlignUp(node_offset + layout.NodeSectionBytes(tree.nodes.size()));
   const uint64_t tri_offset = AlignUp(list_offset + uint64_t{img::kListEntryBytes} * tree.lists.size());
-  const uint64_t total = AlignUp(tri_offset + uint64_t{img::kTriangleBytes} * scene.triangles.size());
+  const uint64_t total = AlignUp(tri_offset + uint64_t{layout.TriangleBytes()} * scene.triangles.size());
   if (total > UINT32_MAX) {
     throw InputError(scene.source, 0,
                      "memory image would be " + std::to_string(total) +
                          " bytes; the image format addresses at most 4 GiB");
+  }
+  const std::string fmt_name = fp::Format{layout.e, layout.m}.Name();
+  if (!tree.nodes.empty() && layout.IndexOfPosition(static_cast<uint32_t>(tree.nodes.size() - 1)) > layout.MaxAbove()) {
+    throw InputError(scene.source, 0,
+                     std::to_string(tree.nodes.size()) + " kd-tree nodes do not fit the " +
+                         std::to_string(layout.AboveBits()) + "-bit child index of a " + fmt_name +
+                         " image node (docs/memory-image.md)");
+  }
+  if (tree.lists.size() > layout.MaxFirst() + 1) {
+    throw InputError(scene.source, 0,
+                     std::to_string(tree.lists.size()) + " leaf list entries do not fit the " +
+                         std::to_string(layout.FirstBits()) + "-bit first-entry field of a " + fmt_name +
+                         " image node (docs/memory-image.md)");
+  }
+  if (tree.stats.max_leaf_prims > layout.MaxCount()) {
+    throw InputError(scene.source, 0,
+                     "a leaf of " + std::to_string(tree.stats.max_leaf_prims) + " triangles does not fit the " +
+                         std::to_string(layout.CountBits()) + "-bit count of a " + fmt_name +
+                         " image node (docs/memory-image.md)");
   }
   h.total_bytes = static_cast<uint32_t>(total);
   h.node_offset = static_cast<uint32_t>(node_offset);
@@ -44,22 +116,34 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, co
 
   std::vector<uint8_t> bytes(total, 0);
   std::memcpy(bytes.data(), &h, sizeof(h));
-  if (!tree.nodes.empty()) {
-    std::memcpy(bytes.data() + node_offset, tree.nodes.data(), tree.nodes.size() * img::kNodeBytes);
+  // tree.nodes is in layout order with positions as indices (img::Node,
+  // binary32 splits); each goes to its slot with its indices re-encoded.
+  const int w = layout.Width();
+  for (size_t p = 0; p < tree.nodes.size(); ++p) {
+    const img::Node& n = tree.nodes[p];
+    const uint32_t index = layout.IndexOfPosition(static_cast<uint32_t>(p));
+    uint8_t* beat = bytes.data() + node_offset + layout.NodeBeatOffset(index);
+    const uint64_t at = static_cast<uint64_t>(layout.NodeBitOffset(index));
+    if (n.IsLeaf()) {
+      const uint64_t payload = uint64_t{n.FirstEntry()} | uint64_t{n.Count()} << layout.FirstBits();
+      SetBits(beat, at, w, payload);
+      SetBits(beat, at + w, 2, img::kLeaf);
+      SetBits(beat, at + w + 2, layout.AboveBits(), payload >> w);
+    } else {
+      SetBits(beat, at, w, StoredBits(layout, n.Split()));
+      SetBits(beat, at + w, 2, static_cast<uint64_t>(n.Axis()));
+      SetBits(beat, at + w + 2, layout.AboveBits(), layout.IndexOfPosition(n.AboveChild()));
+    }
   }
   if (!tree.lists.empty()) {
     std::memcpy(bytes.data() + list_offset, tree.lists.data(), tree.lists.size() * img::kListEntryBytes);
   }
   for (size_t i = 0; i < scene.triangles.size(); ++i) {
     const Triangle& t = scene.triangles[i];
-    img::TriangleRecord r{};
-    for (int k = 0; k < 3; ++k) {
-      r.v0[k] = t.v0[k];
-      r.v1[k] = t.v1[k];
-      r.v2[k] = t.v2[k];
-    }
-    r.id = static_cast<uint32_t>(i);
-    std::memcpy(bytes.data() + tri_offset + i * img::kTriangleBytes, &r, sizeof(r));
+    uint8_t* rec = bytes.data() + tri_offset + i * layout.TriangleBytes();
+    const glm::vec3* v[3] = {&t.v0, &t.v1, &t.v2};
+    for (int k = 0; k < 9; ++k) SetBits(rec, static_cast<uint64_t>(k) * w, w, StoredBits(layout, (*v[k / 3])[k % 3]));
+    SetBits(rec, 9ull * w, 32, static_cast<uint32_t>(i));
   }
   return bytes;
 }
@@ -71,6 +155,63 @@ FramedImage BuildFramedImage(const Scene& world, const BuildOptions& build) {
   out.tree = BuildKdTree(framed, build);
   out.bytes = BuildMemoryImage(framed, out.tree, out.frame);
   return out;
+}
+
+std::vector<uint8_t> RepackImage(const ImageView& fp32, const img::ImageLayout& layout) {
+  const img::Header& h = fp32.header();
+  if (!fp32.layout().IsFp32()) throw InputError("memory image", 0, "only an fp32 image can be repacked");
+  // Rebuild the inputs of BuildMemoryImage from the fp32 image: the nodes in
+  // position order, the lists, the triangles.
+  Scene scene;
+  scene.source = "memory image";
+  scene.triangles.resize(h.tri_count);
+  for (uint32_t i = 0; i < h.tri_count; ++i) {
+    const img::TriangleRecord r = fp32.triangle(i);
+    for (int k = 0; k < 3; ++k) {
+      scene.triangles[i].v0[k] = r.v0[k];
+      scene.triangles[i].v1[k] = r.v1[k];
+      scene.triangles[i].v2[k] = r.v2[k];
+    }
+  }
+  KdTree tree;
+  tree.nodes.assign(fp32.raw_nodes(), fp32.raw_nodes() + h.node_count);
+  tree.lists.assign(fp32.lists(), fp32.lists() + h.list_count);
+  tree.stats.max_depth = h.max_depth;
+  tree.stats.max_leaf_prims = h.max_leaf_prims;
+  for (int i = 0; i < 3; ++i) {
+    tree.bounds_min[i] = h.bounds_min[i];
+    tree.bounds_max[i] = h.bounds_max[i];
+  }
+  return BuildMemoryImage(scene, tree, fp32.frame(), layout);
+}
+
+img::Node ImageView::DecodeNode(uint32_t i) const {
+  const uint8_t* beat = data_ + header_->node_offset + layout_.NodeBeatOffset(i);
+  const uint64_t at = static_cast<uint64_t>(layout_.NodeBitOffset(i));
+  const int w = layout_.Width();
+  const uint64_t lo = GetBits(beat, at, w);
+  const uint32_t tag = static_cast<uint32_t>(GetBits(beat, at + w, 2));
+  const uint64_t hi = GetBits(beat, at + w + 2, layout_.AboveBits());
+  if (tag == img::kLeaf) {
+    const uint64_t payload = hi << w | lo;
+    const uint64_t first = payload & layout_.MaxFirst();
+    const uint64_t count = payload >> layout_.FirstBits();
+    return img::Node::Leaf(static_cast<uint32_t>(first), static_cast<uint32_t>(count));
+  }
+  return img::Node::Inner(static_cast<int>(tag), LoadedFloat(layout_, static_cast<uint32_t>(lo)),
+                          static_cast<uint32_t>(hi));
+}
+
+img::TriangleRecord ImageView::DecodeTriangle(uint32_t id) const {
+  const uint8_t* rec = data_ + header_->tri_offset + uint64_t{id} * layout_.TriangleBytes();
+  const int w = layout_.Width();
+  img::TriangleRecord r{};
+  float* v[3] = {r.v0, r.v1, r.v2};
+  for (int k = 0; k < 9; ++k) {
+    v[k / 3][k % 3] = LoadedFloat(layout_, static_cast<uint32_t>(GetBits(rec, static_cast<uint64_t>(k) * w, w)));
+  }
+  r.id = static_cast<uint32_t>(GetBits(rec, 9ull * w, 32));
+  return r;
 }
 
 Frame ImageView::frame() const {
@@ -92,14 +233,22 @@ ImageView::ImageView(const uint8_t* data, size_t size, const std::string& name)
          std::to_string(img::kVersion));
   }
   if (h.total_bytes != size) fail("header says " + std::to_string(h.total_bytes) + " bytes, have " + std::to_string(size));
+  if (h.format_e < 2 || h.format_e > 8 || h.format_m < 1 || h.format_m > 23) {
+    fail("number format e" + std::to_string(h.format_e) + "m" + std::to_string(h.format_m) +
+         " is not one an image can hold (2 <= e <= 8, 1 <= m <= 23)");
+  }
+  layout_ = img::ImageLayout{static_cast<int>(h.format_e), static_cast<int>(h.format_m)};
+  for (uint32_t r : h.reserved) {
+    if (r != 0) fail("reserved header words are not zero");
+  }
   auto check_section = [&](uint64_t off, uint64_t count, uint64_t elem, const char* what) {
     if (off % img::kSectionAlign != 0 || off < img::kHeaderBytes || off + count * elem > size) {
       fail(std::string(what) + " section out of bounds or misaligned");
     }
   };
-  check_section(h.node_offset, h.node_count, img::kNodeBytes, "node");
+  check_section(h.node_offset, layout_.NodeSectionBytes(h.node_count), 1, "node");
   check_section(h.list_offset, h.list_count, img::kListEntryBytes, "leaf list");
-  check_section(h.tri_offset, h.tri_count, img::kTriangleBytes, "triangle");
+  check_section(h.tri_offset, h.tri_count, layout_.TriangleBytes(), "triangle");
   if (h.node_count == 0) fail("no root node");
   for (int i = 0; i < 3; ++i) {
     if (!std::isfinite(h.frame_origin[i])) fail("frame origin is not finite");
@@ -110,27 +259,38 @@ ImageView::ImageView(const uint8_t* data, size_t size, const std::string& name)
   nodes_ = reinterpret_cast<const img::Node*>(data + h.node_offset);
   lists_ = reinterpret_cast<const uint32_t*>(data + h.list_offset);
   tris_ = reinterpret_cast<const img::TriangleRecord*>(data + h.tri_offset);
-  for (uint32_t i = 0; i < h.node_count; ++i) {
-    const img::Node& n = nodes_[i];
-    if (n.IsLeaf()) {
-      if (uint64_t{n.FirstEntry()} + n.Count() > h.list_count) fail("node " + std::to_string(i) + ": leaf list out of range");
-    } else if (i + 1 >= h.node_count || n.AboveChild() <= i || n.AboveChild() >= h.node_count) {
-      // Children after their parent also rules out cycles.
-      fail("node " + std::to_string(i) + ": child index out of range");
-    } else if (!std::isfinite(n.Split())) {
-      fail("node " + std::to_string(i) + ": split position is not finite");
-    }
-  }
-  // Children come after their parents, so one forward pass finds every
-  // node's depth; the header's max_depth sizes the hardware's stack and must
-  // be the truth.
+  packed_ = !layout_.IsFp32();
+  // Node i in position order p; children must come after their parent
+  // (which also rules out cycles) and name a slot that holds a node.
+  const uint32_t last = layout_.IndexOfPosition(h.node_count - 1);
+  auto valid_child = [&](uint32_t parent, uint32_t child) {
+    return child > parent && child <= last && layout_.ValidIndex(child);
+  };
   std::vector<uint32_t> depth(h.node_count, 0);
   uint32_t max_depth = 0;
-  for (uint32_t i = 0; i < h.node_count; ++i) {
-    max_depth = std::max(max_depth, depth[i]);
-    if (!nodes_[i].IsLeaf()) {
-      depth[i + 1] = std::max(depth[i + 1], depth[i] + 1);
-      depth[nodes_[i].AboveChild()] = std::max(depth[nodes_[i].AboveChild()], depth[i] + 1);
+  for (uint32_t p = 0; p < h.node_count; ++p) {
+    const uint32_t i = layout_.IndexOfPosition(p);
+    const img::Node n = node(i);
+    max_depth = std::max(max_depth, depth[p]);
+    if (n.IsLeaf()) {
+      if (uint64_t{n.FirstEntry()} + n.Count() > h.list_count) fail("node " + std::to_string(i) + ": leaf list out of range");
+      continue;
+    }
+    if (!valid_child(i, next(i)) || !valid_child(i, n.AboveChild())) {
+      fail("node " + std::to_string(i) + ": child index out of range");
+    }
+    // An fp32 split is finite; a packed one may have overflowed to an
+    // infinity (a format too narrow for the scene: a warned case, traced as
+    // the load from the fp32 image would), never NaN.
+    if (layout_.IsFp32() ? !std::isfinite(n.Split()) : std::isnan(n.Split())) {
+      fail("node " + std::to_string(i) + ": split position is not finite");
+    }
+    // Children come after their parents, so one forward pass finds every
+    // node's depth; the header's max_depth sizes the hardware's stack and
+    // must be the truth.
+    for (uint32_t c : {next(i), n.AboveChild()}) {
+      uint32_t& d = depth[layout_.PositionOfIndex(c)];
+      d = std::max(d, depth[p] + 1);
     }
   }
   if (max_depth != h.max_depth) {

@@ -87,12 +87,12 @@ void AddImageExponentCriteria(const ImageView& image, std::vector<PrecisionCrite
   PrecisionCriterion under{"triangle_underflow", true, "triangles",
                            "have a determinant (twice the area) that flushes to zero: no ray can hit them"};
   PrecisionCriterion over{"triangle_overflow", true, "triangles", "have a determinant (twice the area) that overflows"};
-  const img::TriangleRecord* tris = image.triangles();
   for (uint32_t t = 0; t < image.header().tri_count; ++t) {
+    const img::TriangleRecord tri = image.triangle(t);
     Need c;
-    for (const float* v : {tris[t].v0, tris[t].v1, tris[t].v2}) c.Overflow(Abs3Max(v));
+    for (const float* v : {tri.v0, tri.v1, tri.v2}) c.Overflow(Abs3Max(v));
     coords.Add(c.bits);
-    const double area2 = Area2(tris[t]);
+    const double area2 = Area2(tri);
     if (area2 == 0) continue;  // degenerate in the image: never hit in any format
     Need u, o;
     u.Flush(area2);
@@ -146,7 +146,7 @@ void AddRayExponentCriteria(const ImageView& image, const std::vector<Ray>& rays
 
     // The hit's watertight test (docs/dataflow.md, section 3) in double.
     const RaySetup<fp::NativeF64Arith> r = SetupRay(a, ray);
-    const img::TriangleRecord& tri = image.triangles()[hits[i].prim];
+    const img::TriangleRecord tri = image.triangle(hits[i].prim);
     const float* v[3] = {tri.v0, tri.v1, tri.v2};
     Need ho, hu;
     double p[3][3], x[3], y[3], z[3], p_max = 0, z_max = 0;

@@ -74,9 +74,9 @@ uint32_t KeyBits(float x) {
 PrecisionCriterion VertexCollapse(const ImageView& image) {
   PrecisionCriterion c{"vertex_collapse", false, "vertices", "collapse onto another vertex"};
   std::vector<Key> verts;
-  const img::TriangleRecord* tris = image.triangles();
   for (uint32_t t = 0; t < image.header().tri_count; ++t) {
-    for (const float* v : {tris[t].v0, tris[t].v1, tris[t].v2}) verts.push_back({KeyBits(v[0]), KeyBits(v[1]), KeyBits(v[2])});
+    const img::TriangleRecord tri = image.triangle(t);
+    for (const float* v : {tri.v0, tri.v1, tri.v2}) verts.push_back({KeyBits(v[0]), KeyBits(v[1]), KeyBits(v[2])});
   }
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
@@ -131,11 +131,11 @@ int BitsKeepingArea(Load load) {
 // vertices are collinear at some width below 23 bits.
 PrecisionCriterion DegenerateTriangles(const ImageView& image, int threads) {
   PrecisionCriterion c{"degenerate_triangles", false, "triangles", "become degenerate (no area)"};
-  const img::TriangleRecord* tris = image.triangles();
   const uint32_t n = image.header().tri_count;
   std::vector<int> needs(n, -1);  // -1: degenerate in the image, not checked
   ParallelFor(n, threads, [&](size_t t) {
-    const float* v[3] = {tris[t].v0, tris[t].v1, tris[t].v2};
+    const img::TriangleRecord tri = image.triangle(static_cast<uint32_t>(t));
+    const float* v[3] = {tri.v0, tri.v1, tri.v2};
     needs[t] = BitsKeepingArea([&](int m, double p[3][3]) {
       for (int k = 0; k < 3; ++k) {
         for (int a = 0; a < 3; ++a) p[k][a] = RoundMantissa(v[k][a], m);
@@ -173,7 +173,7 @@ PrecisionCriterion SplitOrder(const ImageView& image) {
   while (!stack.empty()) {
     const Cell cell = stack.back();
     stack.pop_back();
-    const img::Node node = image.nodes()[cell.node];
+    const img::Node node = image.node(cell.node);
     if (node.IsLeaf()) continue;
     const int a = node.Axis();
     const float s = node.Split(), lo = cell.lo[a], hi = cell.hi[a];
@@ -189,7 +189,7 @@ PrecisionCriterion SplitOrder(const ImageView& image) {
       c.Add(needs);
     }
     Cell below = cell, above = cell;
-    below.node = cell.node + 1;
+    below.node = image.next(cell.node);
     below.hi[a] = s;
     above.node = node.AboveChild();
     above.lo[a] = s;
@@ -223,7 +223,7 @@ void AddRayMantissaCriteria(const ImageView& image, const std::vector<Ray>& rays
   for (size_t i = 0; i < rays.size(); ++i) {
     if (!hits[i].IsHit()) continue;
     const Ray ray = ToFrame(rays[i], image.frame()).ray;
-    const img::TriangleRecord& tri = image.triangles()[hits[i].prim];
+    const img::TriangleRecord tri = image.triangle(hits[i].prim);
     const float* v[3] = {tri.v0, tri.v1, tri.v2};
     const int needs = BitsKeepingArea([&](int m, double p[3][3]) {
       for (int k = 0; k < 3; ++k) {

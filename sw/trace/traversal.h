@@ -139,19 +139,18 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
   };
   Entry stack[kMaxTraversalStack];
   int sp = 0;
-  const img::Node* nodes = image.nodes();
   const uint32_t* lists = image.lists();
-  const img::TriangleRecord* tris = image.triangles();
   uint32_t node = 0;
   for (;;) {
-    const img::Node n = nodes[node];
+    const img::Node n = image.node(node);
     if (counters) ++counters->nodes;
     if (path) path->push_back(node);
     if (!n.IsLeaf()) {
       const TraversalStep<A> step =
           StepInnerNode(a, n.Split(), r.o[n.Axis()], r.d[n.Axis()], r.inv_d[n.Axis()], t0, t1);
-      const uint32_t first = step.below_first ? node + 1 : n.AboveChild();
-      const uint32_t second = step.below_first ? n.AboveChild() : node + 1;
+      const uint32_t below = image.next(node);
+      const uint32_t first = step.below_first ? below : n.AboveChild();
+      const uint32_t second = step.below_first ? n.AboveChild() : below;
       if (step.action == TraversalAction::kFirst) {
         node = first;
       } else if (step.action == TraversalAction::kSecond) {
@@ -171,8 +170,8 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
         const uint32_t id = lists[n.FirstEntry() + k];
         if (counters) ++counters->tri_tests;
         const Candidate<A> c = isect == IsectMethod::kWatertight
-                                   ? IntersectWatertight(a, r, tris[id], leaf_tmax)
-                                   : IntersectMoller(a, r, tris[id], leaf_tmax);
+                                   ? IntersectWatertight(a, r, image.triangle(id), leaf_tmax)
+                                   : IntersectMoller(a, r, image.triangle(id), leaf_tmax);
         if (!c.hit) continue;
         if (a.Lt(c.t, best.t) || (a.Eq(c.t, best.t) && id < best.prim)) {
           best.t = c.t;

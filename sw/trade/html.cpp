@@ -50,7 +50,8 @@ std::string TableHtml(const TradeResult& t) {
   s << "<table class=\"trade\">\n<tr><th>format</th><th>bits</th><th>hit/miss</th><th>triangle</th>"
        "<th>t p50</th><th>t p99</th><th>t max</th><th>PSNR dB</th><th>holes</th><th>nodes/ray</th>"
        "<th>leaves/ray</th><th>tests/ray</th><th>cycles/ray</th><th>efficiency</th><th>bytes/ray</th>"
-       "<th>cells</th><th>flip-flops</th><th>depth</th><th>area from</th><th>rays/cycle/kcell</th></tr>\n";
+       "<th>image bytes</th><th>cells</th><th>flip-flops</th><th>depth</th><th>area from</th>"
+       "<th>rays/cycle/kcell</th></tr>\n";
   for (const FormatResult& r : t.formats) {
     const Accuracy& a = r.accuracy;
     const bool rec = r.format.Name() == t.recommended;
@@ -68,6 +69,7 @@ std::string TableHtml(const TradeResult& t) {
     } else {
       s << "<td>-</td><td>-</td><td>-</td>";
     }
+    s << "<td>" << r.memory_bytes << "</td>";
     if (r.area) {
       s << "<td>" << r.area->cells << "</td><td>" << r.area->flip_flops << "</td><td>" << r.area->depth
         << "</td><td title=\"" << Esc(r.area->detail) << "\">" << r.area->source << "</td>";

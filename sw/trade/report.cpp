@@ -138,8 +138,11 @@ void PrintTable(const TradeResult& t, FILE* out) {
   };
   row(t.truth, "fp64");
   for (const FormatResult& r : t.formats) row(r, r.format.Name().c_str());
-  std::fprintf(out, "\nmemory image   %llu bytes (every format)\n",
-               static_cast<unsigned long long>(t.truth.memory_bytes));
+  std::fprintf(out, "\nmemory image  ");
+  for (const FormatResult& r : t.formats) {
+    std::fprintf(out, " %s %llu", r.format.Name().c_str(), static_cast<unsigned long long>(r.memory_bytes));
+  }
+  std::fprintf(out, " bytes (splits and vertices in the format's width)\n");
   std::fprintf(out, "minimal format %s (the scene's precision requirement)\n", t.minimal_format.c_str());
   std::fprintf(out, "recommended    %s (smallest format with at most %s of rays whose hit differs from fp64 (hit/miss or triangle), "
                     "and no holes)\n",

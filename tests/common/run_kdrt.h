@@ -15,8 +15,9 @@ struct RunResult {
   std::string output;  // stdout and stderr
 };
 
-inline RunResult RunKdrt(const std::string& args) {
-  const std::string cmd = std::string(KDRT_BIN) + " " + args + " 2>&1";
+// Runs a shell command line; stdout and stderr together.
+inline RunResult RunCommand(const std::string& command) {
+  const std::string cmd = command + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   std::array<char, 4096> buf;
@@ -25,5 +26,7 @@ inline RunResult RunKdrt(const std::string& args) {
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
+
+inline RunResult RunKdrt(const std::string& args) { return RunCommand(std::string(KDRT_BIN) + " " + args); }
 
 }  // namespace kdrt::testing

@@ -240,6 +240,26 @@ TEST_F(SimCli, SceneLargerThanTheMemoryIsRefused) {
   EXPECT_EQ(FileCount(), 0u);
 }
 
+// A core reads the image of its own format: the fp32 model refuses an fp16
+// image (as `kdrt info --format fp16 --image` writes it), and the fp16 model
+// runs it.
+TEST_F(SimCli, ModelRefusesAnImageOfAnotherFormat) {
+  ASSERT_EQ(RunKdrt("rays --mesh sphere --size 4 --scene-out " + Path("s.nff") + " --rays-out " + Path("r.bin"))
+                .exit_code,
+            0);
+  ASSERT_EQ(RunKdrt("info " + Path("s.nff") + " --format fp16 --image " + Path("fp16.img")).exit_code, 0);
+  const std::string model_dir = KDRT_MODEL_DIR;
+  const std::string args = " --image " + Path("fp16.img") + " --rays " + Path("r.bin") + " --hits-out " +
+                           Path("h.exr") + " --report-out " + Path("r.json");
+  const RunResult wrong = testing::RunCommand(model_dir + "/kdrt-sim-fp32" + args);
+  EXPECT_EQ(wrong.exit_code, 1) << wrong.output;
+  EXPECT_NE(wrong.output.find("an e5m10 image, but this core computes in fp32"), std::string::npos) << wrong.output;
+  EXPECT_FALSE(fs::exists(Path("h.exr")));
+  const RunResult right = testing::RunCommand(model_dir + "/kdrt-sim-fp16" + args);
+  EXPECT_EQ(right.exit_code, 0) << right.output;
+  EXPECT_TRUE(fs::exists(Path("h.exr")));
+}
+
 TEST_F(SimCli, Fp64IsRefused) {
   const RunResult s = RunKdrt("sim gen:balls:200 --res 8x8 --format fp64 -o " + Path("x.png") + " --json " +
                               Path("x.json"));

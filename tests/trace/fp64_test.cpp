@@ -96,7 +96,7 @@ TEST(Fp64, AgreesWithFp32OnTheGenerators) {
         // In the image's frame, where both traced the same (framed) ray.
         const FramedRay framed = ToFrame(rays[i], p.view().frame());
         const long double exact =
-            std::ldexp(PlaneT(p.view().triangles()[h64[i].prim], framed.ray), framed.t_scale_log2);
+            std::ldexp(PlaneT(p.view().triangle(h64[i].prim), framed.ray), framed.t_scale_log2);
         EXPECT_LT(std::fabs(h64[i].t - exact), std::fabs(h32[i].t - exact)) << name << " ray " << i;
       }
       EXPECT_NEAR(h32[i].u, h64[i].u, 1e-3) << name << " ray " << i;

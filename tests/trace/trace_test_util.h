@@ -51,7 +51,7 @@ Hit BruteForce(const A& a, const ImageView& image, const Ray& ray) {
   best.t_scale_log2 = framed.t_scale_log2;
   best.t = r.tmax;
   for (uint32_t id = 0; id < image.header().tri_count; ++id) {
-    const Candidate<A> c = IntersectWatertight(a, r, image.triangles()[id], r.tmax);
+    const Candidate<A> c = IntersectWatertight(a, r, image.triangle(id), r.tmax);
     if (c.hit && (a.Lt(c.t, best.t) || (a.Eq(c.t, best.t) && id < best.prim))) {
       best.t = c.t;
       best.u = c.u;

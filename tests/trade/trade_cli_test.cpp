@@ -104,6 +104,9 @@ TEST_F(TradeCli, AccuracyAgreesWithDirectHitBufferComparisonOnEveryGenerator) {
       if (f == "fp32") {
         EXPECT_LE(acc["hitmiss_mismatch"].get<double>(), 1e-4);
       }
+      // The memory column is the format's own image, as kdrt info sizes it.
+      ASSERT_EQ(RunKdrt("info " + scene + " --format " + f + " --json " + Path("info.json")).exit_code, 0);
+      EXPECT_EQ(row["memory_bytes"].get<uint64_t>(), ReadJson(Path("info.json"))["image_bytes"].get<uint64_t>());
     }
   }
 }
