@@ -167,7 +167,7 @@ module rt_core #(
   assign node_first = 32'(node_payload[FirstBits-1:0]);
   assign node_count = node_payload[NodeBits-3:FirstBits];
   assign node_below = (ThreeSlots && node_q[node_tag][1:0] == 2'd2) ? node_q[node_tag] + NodeIdxWidth'(2)
-                                                                          : node_q[node_tag] + 1'b1;
+                                                                    : node_q[node_tag] + 1'b1;
   // The units load binary32: a narrower split widens exactly (the unit's
   // load rounds it back to itself).
   if (W == 32) begin : g_split32

@@ -145,6 +145,19 @@ TradeResult MeasureTrade(const PreparedScene& p, const RaySet& rays, const Trade
     }
     t.formats.push_back(std::move(r));
   }
+  if (o.area) {
+    // rt_mem_system has no format parameter in the table: it is counted with
+    // fp32's 3-beat triangle lines, where a narrower core's image has 2- or
+    // 1-beat records (docs/memory-image.md).
+    std::string narrower;
+    for (const FormatResult& r : t.formats) {
+      if (LayoutFor(r.format).TriangleBeats() < 3) narrower += (narrower.empty() ? "" : ", ") + r.format.Name();
+    }
+    if (!narrower.empty()) {
+      t.notes.push_back("area of " + narrower + " counts rt_mem_system with fp32's 3-beat triangle cache lines; "
+                        "their cores hold shorter records, so their cells and flip-flops are overestimated (docs/trade.md)");
+    }
+  }
   t.recommended = Recommend(t.formats, o.target_mismatch);
   for (const std::string& note : t.notes) std::fprintf(stderr, "kdrt: note: %s\n", note.c_str());
   return t;
