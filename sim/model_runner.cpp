@@ -13,6 +13,7 @@
 #include <fstream>
 
 #include "common/error.h"
+#include "common/text_file.h"
 #include "trace/images.h"
 #include "trace/rays_file.h"
 
@@ -22,16 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const char* const kBuildDir = KDRT_SIM_BUILD_DIR;
-
-std::string Tail(const std::string& path, size_t lines) {
-  std::ifstream f(path);
-  std::vector<std::string> all;
-  std::string line;
-  while (std::getline(f, line)) all.push_back(line);
-  std::string out;
-  for (size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) out += all[i] + "\n";
-  return out;
-}
 
 // A directory that is removed with everything in it when it goes out of scope.
 class TempDir {
@@ -135,7 +126,7 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
   const int rc = std::system(cmd.c_str());
   if (rc != 0 || !fs::exists(loc.path)) {
     throw std::runtime_error("building the simulation model " + choice.config.Key() + " failed; the end of " + log +
-                             ":\n" + Tail(log, 25));
+                             ":\n" + LastLines(log, 25));
   }
   std::fprintf(stderr, "kdrt sim: model built in %.0f s\n",
                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

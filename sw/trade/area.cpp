@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "common/text_file.h"
 
 namespace kdrt::trade {
 namespace {
@@ -71,16 +72,6 @@ std::string Percent(double fraction) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * fraction);
   return buf;
-}
-
-std::string Tail(const std::string& path, size_t lines) {
-  std::ifstream f(path);
-  std::vector<std::string> all;
-  std::string line;
-  while (std::getline(f, line)) all.push_back(line);
-  std::string out;
-  for (size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) out += all[i] + "\n";
-  return out;
 }
 
 std::string Trim(const std::string& s) {
@@ -357,7 +348,7 @@ void Synthesize(const std::vector<Job>& jobs, const std::string& script, const A
       std::lock_guard<std::mutex> lock(mu);
       if (rc != 0 || !ReadCached(job.json, job.key)) {
         if (!failure) {
-          const std::string tail = Tail(job.log, 20);
+          const std::string tail = LastLines(job.log, 20);
           const bool no_yosys = tail.find("command not found") != std::string::npos;
           failure = "synthesizing " + job.key.Label() + " failed (" + script + " exit status " + std::to_string(rc) +
                     "; log " + job.log + "). Its end:\n" + tail +
