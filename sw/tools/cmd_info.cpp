@@ -67,9 +67,19 @@ int Run(const InfoArgs& args) {
   std::vector<uint8_t> chosen = p.image;
   for (const fp::Format& f : formats) {
     const img::ImageLayout l = LayoutFor(f);
-    std::vector<uint8_t> bytes = l.IsFp32() ? p.image : RepackImage(fp32_image, l);
+    const bool is_chosen = l.e == layout.e && l.m == layout.m;
+    std::vector<uint8_t> bytes;
+    try {
+      bytes = l.IsFp32() ? p.image : RepackImage(fp32_image, l);
+    } catch (const InputError& e) {
+      if (is_chosen) throw;  // the image asked for cannot be built: an error
+      // Another preset's image does not fit this tree: said, not fatal.
+      images[f.Name()] = {{"error", e.what()}};
+      std::fprintf(stderr, "kdrt: note: no %s image: %s\n", f.Name().c_str(), e.what());
+      continue;
+    }
     images[f.Name()] = ImageSizes(bytes);
-    if (l.e == layout.e && l.m == layout.m) chosen = std::move(bytes);
+    if (is_chosen) chosen = std::move(bytes);
   }
   OutputSet outputs;
   if (!args.json.empty()) {
@@ -95,7 +105,12 @@ int Run(const InfoArgs& args) {
   PrintTreeStats(p);
   std::printf("image by format");
   for (const fp::Format& f : formats) {
-    std::printf(" %s %llu", f.Name().c_str(), images[f.Name()]["bytes"].get<unsigned long long>());
+    const nlohmann::json& im = images[f.Name()];
+    if (im.contains("bytes")) {
+      std::printf(" %s %llu", f.Name().c_str(), im["bytes"].get<unsigned long long>());
+    } else {
+      std::printf(" %s -", f.Name().c_str());
+    }
   }
   std::printf(" bytes (splits and vertices in the format's width)\n");
   std::printf("minimal format  %s\n", req.MinimalFormat().c_str());

@@ -195,6 +195,32 @@ TEST_F(Cli, InfoAndGen) {
   EXPECT_GT(fs::file_size(Path("t.img")), 128u);
 }
 
+// 70,000 copies of one triangle make one leaf of 70,000: more than a packed
+// 16-bit format's node can count (docs/memory-image.md). kdrt info says so
+// and goes on; render in fp16 refuses with the reason and writes nothing,
+// and traces the fp32 image when asked.
+TEST_F(Cli, ATreeAPackedFormatCannotHoldIsSaid) {
+  std::string nff = "v\nfrom 0.3 0.3 5\nat 0.3 0.3 0\nup 0 1 0\nangle 30\nhither 0.1\nresolution 8 8\n";
+  for (int i = 0; i < 70000; ++i) nff += "p 3\n0 0 0\n1 0 0\n0 1 0\n";
+  Write("big_leaf.nff", nff);
+  RunResult r = RunKdrt("info " + Path("big_leaf.nff") + " --json " + Path("info.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("kdrt: note: no fp16 image: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("16-bit count of a fp16 image node"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" fp16 -"), std::string::npos) << r.output;
+  std::ifstream f(Path("info.json"));
+  const nlohmann::json j = nlohmann::json::parse(f);
+  EXPECT_TRUE(j["images"]["bf16"].contains("error"));
+  EXPECT_GT(j["images"]["fp24"]["bytes"].get<uint64_t>(), 0u);
+  fs::remove(Path("info.json"));
+  r = RunKdrt("render " + Path("big_leaf.nff") + " --format fp16 -o " + Path("x.png") + " --json " + Path("x.json"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("16-bit count of a fp16 image node"), std::string::npos) << r.output;
+  EXPECT_EQ(FileCount(), 1u);  // the scene alone
+  r = RunKdrt("render " + Path("big_leaf.nff") + " --format fp16 --image-format fp32 -q -o " + Path("x.png"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
 TEST_F(Cli, Fp64RendersWithoutWarnings) {
   const RunResult r = RunKdrt("render gen:balls:800 --res 32x32 --format fp64 -o " + Path("a.png") + " --json " +
                               Path("a.json"));
