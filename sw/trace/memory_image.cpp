@@ -38,21 +38,11 @@ void SetBits(uint8_t* p, uint64_t bit, int n, uint64_t v) {
 // image (the datapath's load does the rounding, as before version 3), else
 // rounded once to the format, exactly as the datapath's load would.
 uint32_t StoredBits(const img::ImageLayout& layout, float x) {
-  if (layout.IsFp32()) {
-    uint32_t bits;
-    std::memcpy(&bits, &x, 4);
-    return bits;
-  }
-  return fp::FromFloat(fp::Format{layout.e, layout.m}, x);
+  return layout.IsFp32() ? fp::BitsOf(x) : fp::FromFloat(fp::Format{layout.e, layout.m}, x);
 }
 
 float LoadedFloat(const img::ImageLayout& layout, uint32_t bits) {
-  if (layout.IsFp32()) {
-    float x;
-    std::memcpy(&x, &bits, 4);
-    return x;
-  }
-  return fp::ToFloat(fp::Format{layout.e, layout.m}, bits);
+  return layout.IsFp32() ? fp::FloatOf(bits) : fp::ToFloat(fp::Format{layout.e, layout.m}, bits);
 }
 
 }  // namespace
