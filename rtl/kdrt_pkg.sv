@@ -99,12 +99,28 @@ package kdrt_pkg;
     TravPush   = 2'd2
   } trav_action_e;
 
-  // rt_core's perf_o: one bit per event in this cycle, MSB first (bit 15 ..
+  // rt_core's perf_o: one bit per event in this cycle, MSB first (bit 31 ..
   // bit 0); the harness counts them (sim/sim_report.cpp). One field per line,
   // each with a comment saying what it counts: cmake/perf_layout.cmake
   // generates the C++ view (<build>/generated/sim/perf_layout.h) from this
   // text, so names and bit positions are defined here only.
   typedef struct packed {
+    logic busy;                // rays in flight (some thread is not free)
+    logic node_wait;           // a thread's node fetch waits: the node cache does not take it
+    logic list_wait;           // a list entry request waits: the list cache does not take it
+    logic tri_wait;            // a list entry waits: the triangle cache does not take it
+    logic node_wait_inflight;  // a node fetch misses on a line being fetched and cannot join it
+    logic list_wait_inflight;  // a list entry misses on a line being fetched and cannot join it
+    logic tri_wait_inflight;   // a triangle misses on a line being fetched and cannot join it
+    logic node_wait_mshr;      // a node fetch misses and no node cache miss register is free
+    logic list_wait_mshr;      // a list entry misses and no list cache miss register is free
+    logic tri_wait_mshr;       // a triangle misses and no triangle cache miss register is free
+    logic node_merge;          // a node miss joined the fetch of its line (no second fetch)
+    logic list_merge;          // a list miss joined the fetch of its line
+    logic tri_merge;           // a triangle miss joined the fetch of its line
+    logic trav_stall;          // a node response waits for the traversal unit
+    logic isect_stall;         // a triangle waits for the intersection unit
+    logic hit_stall;           // a hit record waits on hit_ready_i
     logic trav_leaf;           // a node response was a leaf
     logic overflow;            // a traversal stack overflowed (the ray's record is invalid)
     logic ray_out;             // a hit record was delivered (hit_valid_o and hit_ready_i)

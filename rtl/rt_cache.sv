@@ -10,10 +10,23 @@
 // flight at once, and responses come back OUT OF ORDER, each with its
 // request's tag.
 //
-// The request stalls (req_ready_o low) while the response register is full,
-// while a completed miss is being answered, when it misses on a line that a
-// miss register is already fetching (it then hits after the fill: no merging,
-// never stale data), or when it misses and no miss register is free.
+// A miss on a line that a miss register is already fetching joins that
+// register (a secondary miss: merged, no second fetch); a register answers up
+// to Targets requests, one per cycle, once its line is in. With Targets = 1
+// nothing merges: such a request waits until the line is in the cache.
+// Hits and completed misses have a response register each, so a hit is
+// taken while a miss is being answered; the port shows a completed miss
+// first. A hit stalls (req_ready_o low) while its register is full. A miss
+// stalls when it would join a
+// register that is full or already answering (wait_inflight_o), or needs a
+// register and none is free (wait_mshr_o). Data is never stale: the cache
+// is read-only.
+//
+// With MissPort = 1 a second request port takes misses only: a request there
+// that misses is taken (it joins or gets a miss register) in a cycle in which
+// the first port takes no miss; a request that would hit is not taken there
+// (it comes again on the first port). So a miss does not cost the first
+// port, whose hits are the cache's answers, a cycle. Unused when MissPort = 0.
 //
 // Memory requests carry {miss register, beat} in mem_req_id_o; the
 // surrounding arbiter routes responses back with it (mem_resp_id_i).
@@ -26,11 +39,14 @@ module rt_cache #(
   parameter int unsigned AddrWidth = 32,
   parameter int unsigned TagWidth = 8,
   parameter int unsigned Mshrs = 4,
+  parameter int unsigned Targets = 1,  // requests a miss register answers (the first and merged ones)
+  parameter bit MissPort = 1'b0,       // the second, miss-only request port
   localparam int unsigned LineBits = LineBeats * 128,
   localparam int unsigned IdxW = (Lines > 1) ? $clog2(Lines) : 1,
   localparam int unsigned BeatW = 2,
   localparam int unsigned MshrW = (Mshrs > 1) ? $clog2(Mshrs) : 1,
-  localparam int unsigned MemIdW = MshrW + BeatW
+  localparam int unsigned MemIdW = MshrW + BeatW,
+  localparam int unsigned TgtW = $clog2(Targets + 1)  // 0 .. Targets
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -40,6 +56,12 @@ module rt_cache #(
   input  logic [KeyWidth-1:0]  req_key_i,
   input  logic [AddrWidth-1:0] req_addr_i,
   input  logic [TagWidth-1:0]  req_tag_i,
+  // the miss-only request port (MissPort)
+  input  logic                 req2_valid_i,
+  output logic                 req2_ready_o,
+  input  logic [KeyWidth-1:0]  req2_key_i,
+  input  logic [AddrWidth-1:0] req2_addr_i,
+  input  logic [TagWidth-1:0]  req2_tag_i,
   // responses
   output logic                 resp_valid_o,
   input  logic                 resp_ready_i,
@@ -55,8 +77,11 @@ module rt_cache #(
   input  logic [127:0]         mem_resp_data_i,
   // performance events
   output logic                 hit_o,
-  output logic                 miss_o,
-  output logic                 filling_o   // some miss is being served
+  output logic                 miss_o,          // a request taken that missed (merged or not)
+  output logic                 merge_o,         // ... and joined a miss register already fetching its line
+  output logic                 wait_inflight_o, // a miss waits: its line's register is full or answering
+  output logic                 wait_mshr_o,     // a miss waits: no miss register is free
+  output logic                 filling_o        // some miss is being served
 );
 
   localparam int unsigned CntW = BeatW + 1;
@@ -69,23 +94,34 @@ module rt_cache #(
   logic [Mshrs-1:0]           mshr_valid_q;
   logic [Mshrs*KeyWidth-1:0]  mshr_key_q;
   logic [Mshrs*AddrWidth-1:0] mshr_addr_q;
-  logic [Mshrs*TagWidth-1:0]  mshr_tag_q;
+  logic [Mshrs*Targets*TagWidth-1:0] mshr_tgt_q;  // the requests to answer, in order
+  logic [Mshrs*TgtW-1:0]      mshr_cnt_q;    // requests joined
+  logic [Mshrs*TgtW-1:0]      mshr_out_q;    // requests answered
   logic [Mshrs*CntW-1:0]      mshr_sent_q;   // beats requested so far
   logic [Mshrs*LineBeats-1:0] mshr_got_q;    // beats received
   logic [Mshrs*LineBits-1:0]  mshr_data_q;
 
-  logic                resp_valid_q;
-  logic [LineBits-1:0] resp_data_q;
-  logic [TagWidth-1:0] resp_tag_q;
+  // Two response registers, one for hits and one for completed misses, so a
+  // hit is taken while a miss is being answered; the response port shows the
+  // completed miss first.
+  logic                hit_valid_q, del_valid_q;
+  logic [LineBits-1:0] hit_data_q, del_data_q;
+  logic [TagWidth-1:0] hit_tag_q, del_tag_q;
 
-  // Per-register conditions and the lowest-numbered register of each kind.
-  logic [Mshrs-1:0] key_match, done, sending;
-  logic             free_valid, done_valid, send_valid, pick_valid;
-  logic [MshrW-1:0] free_idx, done_idx, send_idx, pick_idx;
+  // Per-register conditions and the lowest-numbered register of each kind
+  // (key_match2, joinable2: for the miss-only port's key).
+  logic [Mshrs-1:0] key_match, done, sending, joinable, key_match2, joinable2;
+  logic             free_valid, done_valid, send_valid, pick_valid, join_valid, join2_valid;
+  logic [MshrW-1:0] free_idx, done_idx, send_idx, pick_idx, join_idx, join2_idx;
   for (genvar m = 0; m < Mshrs; m++) begin : g_mshr
+    logic room;
+    assign room = mshr_cnt_q[TgtW*m +: TgtW] < TgtW'(Targets);
     assign key_match[m] = mshr_valid_q[m] && mshr_key_q[KeyWidth*m +: KeyWidth] == req_key_i;
+    assign key_match2[m] = mshr_valid_q[m] && mshr_key_q[KeyWidth*m +: KeyWidth] == req2_key_i;
     assign done[m] = mshr_valid_q[m] && (&mshr_got_q[LineBeats*m +: LineBeats]);
     assign sending[m] = mshr_valid_q[m] && mshr_sent_q[CntW*m +: CntW] < CntW'(LineBeats);
+    assign joinable[m] = key_match[m] && !done[m] && room;
+    assign joinable2[m] = key_match2[m] && !done[m] && room;
   end
   always_comb begin
     free_valid = 1'b0;
@@ -94,10 +130,22 @@ module rt_cache #(
     done_idx = '0;
     pick_valid = 1'b0;
     pick_idx = '0;
+    join_valid = 1'b0;
+    join_idx = '0;
+    join2_valid = 1'b0;
+    join2_idx = '0;
     for (int m = Mshrs - 1; m >= 0; m--) begin
       if (!mshr_valid_q[m]) begin
         free_valid = 1'b1;
         free_idx = MshrW'(m);
+      end
+      if (joinable[m]) begin
+        join_valid = 1'b1;
+        join_idx = MshrW'(m);
+      end
+      if (joinable2[m]) begin
+        join2_valid = 1'b1;
+        join2_idx = MshrW'(m);
       end
       if (done[m]) begin
         done_valid = 1'b1;
@@ -110,29 +158,66 @@ module rt_cache #(
     end
   end
 
-  logic [IdxW-1:0]     req_idx, done_line;
+  logic [IdxW-1:0]     req_idx, req2_idx, done_line;
   logic [KeyWidth-1:0] done_key;
   logic [LineBits-1:0] done_data;
   logic [TagWidth-1:0] done_tag;
-  logic                lookup_hit, accept, out_free, deliver;
+  logic                lookup_hit, lookup2_hit, accept, deliver, done_last, hit_ok, join_ok, alloc_ok;
+  logic                out_take, hit_free, del_free, join2_ok, alloc2_ok, accept2;
+  logic [TgtW-1:0]     done_out, done_cnt;
+  // The miss taken this cycle (from the first port, else the miss-only one).
+  logic                m_take, m_join;
+  logic [MshrW-1:0]    m_join_idx;
+  logic [TgtW-1:0]     m_join_cnt;
+  logic [KeyWidth-1:0] m_key;
+  logic [AddrWidth-1:0] m_addr;
+  logic [TagWidth-1:0] m_tag;
 
   // Lines is a power of two: the index is the key's low bits.
   assign req_idx = req_key_i[IdxW-1:0];
+  assign req2_idx = req2_key_i[IdxW-1:0];
   assign done_key = mshr_key_q[KeyWidth*done_idx +: KeyWidth];
   assign done_line = done_key[IdxW-1:0];
   assign done_data = mshr_data_q[LineBits*done_idx +: LineBits];
-  assign done_tag = mshr_tag_q[TagWidth*done_idx +: TagWidth];
+  assign done_cnt = mshr_cnt_q[TgtW*done_idx +: TgtW];
+  assign done_out = mshr_out_q[TgtW*done_idx +: TgtW];
+  assign done_tag = mshr_tgt_q[TagWidth*(Targets*32'(done_idx) + 32'(done_out)) +: TagWidth];
+  assign done_last = done_out + 1'b1 == done_cnt;
 
   assign lookup_hit = valid_q[req_idx] && key_q[req_idx] == req_key_i;
-  assign out_free = !resp_valid_q || resp_ready_i;
-  // Completed misses go first: they free their register.
-  assign deliver = done_valid && out_free;
-  assign req_ready_o = out_free && !done_valid && (lookup_hit || (free_valid && !(|key_match)));
+  assign lookup2_hit = valid_q[req2_idx] && key_q[req2_idx] == req2_key_i;
+  assign out_take = resp_valid_o && resp_ready_i;
+  assign hit_free = !hit_valid_q || (out_take && !del_valid_q);
+  assign del_free = !del_valid_q || out_take;
+  // A completed miss is answered when its register is free, but never takes
+  // the port from a hit that is shown and not yet taken (the stream's payload
+  // stays until ready). Misses need neither register.
+  assign deliver = done_valid && del_free && !(hit_valid_q && !del_valid_q && !resp_ready_i);
+  assign hit_ok = lookup_hit && hit_free;
+  assign join_ok = !lookup_hit && join_valid;
+  assign alloc_ok = !lookup_hit && !(|key_match) && free_valid;
+  assign req_ready_o = hit_ok || join_ok || alloc_ok;
   assign accept = req_valid_i && req_ready_o;
+  // The miss-only port: a miss, in a cycle in which the first port takes none.
+  assign join2_ok = !lookup2_hit && join2_valid;
+  assign alloc2_ok = !lookup2_hit && !(|key_match2) && free_valid;
+  assign req2_ready_o = MissPort && !(accept && !lookup_hit) && (join2_ok || alloc2_ok);
+  assign accept2 = req2_valid_i && req2_ready_o;
+
+  assign m_take = (accept && !lookup_hit) || accept2;
+  assign m_join = accept2 ? join2_ok : join_ok;
+  assign m_join_idx = accept2 ? join2_idx : join_idx;
+  assign m_join_cnt = mshr_cnt_q[TgtW*m_join_idx +: TgtW];
+  assign m_key = accept2 ? req2_key_i : req_key_i;
+  assign m_addr = accept2 ? req2_addr_i : req_addr_i;
+  assign m_tag = accept2 ? req2_tag_i : req_tag_i;
 
   assign filling_o = |mshr_valid_q;
   assign hit_o = accept && lookup_hit;
-  assign miss_o = accept && !lookup_hit;
+  assign miss_o = m_take;
+  assign merge_o = m_take && m_join;
+  assign wait_inflight_o = req_valid_i && !lookup_hit && (|key_match) && !join_valid;
+  assign wait_mshr_o = req_valid_i && !lookup_hit && !(|key_match) && !free_valid;
 
   // A beat offered to memory and not taken stays offered (the valid/ready
   // rule), even if a lower-numbered miss register starts sending meanwhile.
@@ -165,9 +250,9 @@ module rt_cache #(
   logic [BeatW-1:0] resp_beat;
   assign {resp_mshr, resp_beat} = mem_resp_id_i;
 
-  assign resp_valid_o = resp_valid_q;
-  assign resp_data_o = resp_data_q;
-  assign resp_tag_o = resp_tag_q;
+  assign resp_valid_o = hit_valid_q || del_valid_q;
+  assign resp_data_o = del_valid_q ? del_data_q : hit_data_q;
+  assign resp_tag_o = del_valid_q ? del_tag_q : hit_tag_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -175,16 +260,23 @@ module rt_cache #(
       mshr_valid_q <= '0;
       mshr_sent_q <= '0;
       mshr_got_q <= '0;
-      resp_valid_q <= 1'b0;
+      mshr_cnt_q <= '0;
+      mshr_out_q <= '0;
+      hit_valid_q <= 1'b0;
+      del_valid_q <= 1'b0;
     end else begin
-      if (resp_valid_q && resp_ready_i) resp_valid_q <= 1'b0;
-      if (accept) begin
-        if (lookup_hit) begin
-          resp_valid_q <= 1'b1;
+      if (out_take && del_valid_q) del_valid_q <= 1'b0;
+      if (out_take && !del_valid_q) hit_valid_q <= 1'b0;
+      if (accept && lookup_hit) hit_valid_q <= 1'b1;
+      if (m_take) begin
+        if (m_join) begin
+          mshr_cnt_q[TgtW*m_join_idx +: TgtW] <= m_join_cnt + 1'b1;
         end else begin
           mshr_valid_q[free_idx] <= 1'b1;
           mshr_sent_q[CntW*free_idx +: CntW] <= '0;
           mshr_got_q[LineBeats*free_idx +: LineBeats] <= '0;
+          mshr_cnt_q[TgtW*free_idx +: TgtW] <= TgtW'(1);
+          mshr_out_q[TgtW*free_idx +: TgtW] <= '0;
         end
       end
       if (mem_req_valid_o && mem_req_ready_i) begin
@@ -195,22 +287,26 @@ module rt_cache #(
             mshr_got_q[LineBeats*resp_mshr +: LineBeats] | LineBeats'(1 << resp_beat);
       end
       if (deliver) begin
-        mshr_valid_q[done_idx] <= 1'b0;
+        if (done_last) mshr_valid_q[done_idx] <= 1'b0;
+        mshr_out_q[TgtW*done_idx +: TgtW] <= done_out + 1'b1;
         valid_q[done_line] <= 1'b1;
-        resp_valid_q <= 1'b1;
+        del_valid_q <= 1'b1;
       end
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (accept) begin
-      if (lookup_hit) begin
-        resp_data_q <= data_q[req_idx];
-        resp_tag_q <= req_tag_i;
+    if (accept && lookup_hit) begin
+      hit_data_q <= data_q[req_idx];
+      hit_tag_q <= req_tag_i;
+    end
+    if (m_take) begin
+      if (m_join) begin
+        mshr_tgt_q[TagWidth*(Targets*32'(m_join_idx) + 32'(m_join_cnt)) +: TagWidth] <= m_tag;
       end else begin
-        mshr_key_q[KeyWidth*free_idx +: KeyWidth] <= req_key_i;
-        mshr_addr_q[AddrWidth*free_idx +: AddrWidth] <= req_addr_i;
-        mshr_tag_q[TagWidth*free_idx +: TagWidth] <= req_tag_i;
+        mshr_key_q[KeyWidth*free_idx +: KeyWidth] <= m_key;
+        mshr_addr_q[AddrWidth*free_idx +: AddrWidth] <= m_addr;
+        mshr_tgt_q[TagWidth*Targets*32'(free_idx) +: TagWidth] <= m_tag;
       end
     end
     if (mem_resp_valid_i) begin
@@ -219,8 +315,8 @@ module rt_cache #(
     if (deliver) begin
       data_q[done_line] <= done_data;
       key_q[done_line] <= done_key;
-      resp_data_q <= done_data;
-      resp_tag_q <= done_tag;
+      del_data_q <= done_data;
+      del_tag_q <= done_tag;
     end
   end
 

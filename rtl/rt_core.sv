@@ -36,8 +36,12 @@ module rt_core #(
   parameter int unsigned NodeLineBeats = 2,
   parameter int unsigned ListLineBeats = 2,
   parameter int unsigned RayIdWidth = 32,
-  // Miss registers per cache (outstanding line fetches); at most 16.
-  parameter int unsigned CacheMshrs = 8,
+  // Miss registers per cache (outstanding line fetches); the memory tag
+  // {cache, miss register, beat} must fit 16 bits.
+  parameter int unsigned CacheMshrs /*verilator public*/ = 8,
+  // Requests each miss register answers: misses to a line already being
+  // fetched join its register (1 = no merging; they wait for the fill).
+  parameter int unsigned CacheTargets /*verilator public*/ = 8,
   localparam int unsigned W = E + M + 1,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1
 ) (
@@ -66,13 +70,15 @@ module rt_core #(
   output logic                  mem_req_valid_o,
   input  logic                  mem_req_ready_i,
   output logic [AddrWidth-1:0]  mem_req_addr_o,
-  output logic [7:0]            mem_req_tag_o,
+  output logic [15:0]           mem_req_tag_o,
   input  logic                  mem_resp_valid_i,
-  input  logic [7:0]            mem_resp_tag_i,
+  input  logic [15:0]           mem_resp_tag_i,
   input  logic [127:0]          mem_resp_data_i,
   // status
   output logic                  busy_o,
-  output kdrt_pkg::perf_t       perf_o
+  output kdrt_pkg::perf_t       perf_o,
+  // every thread's state (rt_thread_fsm state_o), for the report's histogram
+  output logic [3*Threads-1:0]  thread_state_o
 );
 
   localparam int unsigned CountW = TriIdxWidth + 1;
@@ -136,12 +142,24 @@ module rt_core #(
   );
 
   // ------------------------------------------------------------ node fetch and traversal
-  logic           fetch_valid, node_req_ready, fetch_fire;
-  logic [ThW-1:0] fetch_idx;
+  logic           fetch_valid, node_req_ready, fetch_fire, fetch2_valid, node_req2_ready, fetch2_fire;
+  logic [ThW-1:0] fetch_idx, fetch2_idx;
+  // The pointer moves on every grant, taken or not: a fetch the node cache
+  // cannot take now (a miss without a free miss register, a hit while its
+  // response register is full) does not hold up the threads behind it.
   rt_rr_arb #(.N(Threads)) u_fetch_arb (
-    .clk_i, .rst_ni, .req_i(is_fetch), .ack_i(node_req_ready), .valid_o(fetch_valid), .idx_o(fetch_idx)
+    .clk_i, .rst_ni, .req_i(is_fetch), .ack_i(1'b1), .valid_o(fetch_valid), .idx_o(fetch_idx)
   );
   assign fetch_fire = fetch_valid && node_req_ready;
+  // A second thread in FETCH, offered to the node cache's miss-only port: if
+  // its node misses, its fetch starts now instead of taking a cycle of the
+  // first port later.
+  logic [Threads-1:0] is_fetch2;
+  assign is_fetch2 = is_fetch & ~(fetch_valid ? Threads'(1) << fetch_idx : '0);
+  rt_rr_arb #(.N(Threads)) u_fetch2_arb (
+    .clk_i, .rst_ni, .req_i(is_fetch2), .ack_i(1'b1), .valid_o(fetch2_valid), .idx_o(fetch2_idx)
+  );
+  assign fetch2_fire = fetch2_valid && node_req2_ready;
 
   // A node: bits [W-1:0] the split, then the axis (or NodeLeaf), then the
   // above child's index; a leaf reads {above bits, split bits} as its count
@@ -262,22 +280,26 @@ module rt_core #(
   );
 
   // ------------------------------------------------------------ caches and memory
-  logic [2:0] cache_hit, cache_miss;  // node, list, triangle
-  logic       mem_wait;
+  logic [2:0] cache_hit, cache_miss, cache_merge, cache_wait_inflight, cache_wait_mshr;  // node, list, triangle
+  logic       mem_wait, tri_wait;
   rt_mem_system #(.AddrWidth(AddrWidth), .TagWidth(ThW), .TriIdxWidth(TriIdxWidth),
                   .NodeCacheLines(NodeCacheLines), .ListCacheLines(ListCacheLines), .TriCacheLines(TriCacheLines),
                   .NodeLineBeats(NodeLineBeats), .ListLineBeats(ListLineBeats), .CacheMshrs(CacheMshrs),
-                  .TriLineBeats(TriBeats)) u_mem (
+                  .CacheTargets(CacheTargets), .TriLineBeats(TriBeats)) u_mem (
     .clk_i, .rst_ni, .tri_base_i,
     .node_req_valid_i(fetch_valid), .node_req_ready_o(node_req_ready), .node_req_tag_i(fetch_idx),
     .node_req_addr_i(node_base_i + (AddrWidth'(node_q[fetch_idx]) >> SlotBits << 4)),
+    .node_req2_valid_i(fetch2_valid), .node_req2_ready_o(node_req2_ready), .node_req2_tag_i(fetch2_idx),
+    .node_req2_addr_i(node_base_i + (AddrWidth'(node_q[fetch2_idx]) >> SlotBits << 4)),
     .node_resp_valid_o(node_valid), .node_resp_ready_i(node_ready), .node_resp_tag_o(node_tag),
     .node_resp_line_o(node_line),
     .list_req_valid_i(list_req_valid), .list_req_ready_o(list_req_ready), .list_req_tag_i(list_req_tag),
     .list_req_addr_i(list_req_addr), .tri_resp_valid_o(tri_valid), .tri_resp_ready_i(isect_in_ready),
     .tri_resp_tag_o(tri_tag), .tri_resp_id_o(tri_id), .tri_resp_o(tri_record),
     .mem_req_valid_o, .mem_req_ready_i, .mem_req_addr_o, .mem_req_tag_o, .mem_resp_valid_i, .mem_resp_tag_i,
-    .mem_resp_data_i, .hit_o(cache_hit), .miss_o(cache_miss), .entry_fire_o(entry_fire), .mem_wait_o(mem_wait)
+    .mem_resp_data_i, .hit_o(cache_hit), .miss_o(cache_miss), .merge_o(cache_merge),
+    .wait_inflight_o(cache_wait_inflight), .wait_mshr_o(cache_wait_mshr), .tri_wait_o(tri_wait),
+    .entry_fire_o(entry_fire), .mem_wait_o(mem_wait)
   );
 
   // ------------------------------------------------------------ hit out
@@ -296,9 +318,10 @@ module rt_core #(
   // ------------------------------------------------------------ thread states and table updates
   rt_thread_fsm #(.Threads(Threads), .CountWidth(CountW)) u_fsm (
     .clk_i, .rst_ni, .free_o(is_free), .fetch_o(is_fetch), .exit_o(is_exit), .done_o(is_done),
+    .state_o(thread_state_o),
     .alloc_idx_o(alloc_idx), .alloc_i(ray_fire), .setup_i(setup_fire), .setup_idx_i(setup_tag),
     .clip_i(clip_valid), .clip_idx_i(clip_tag), .clip_miss_i(clip_miss), .fetch_i(fetch_fire),
-    .fetch_idx_i(fetch_idx), .node_i(node_fire), .node_idx_i(node_tag), .node_leaf_i(node_is_leaf),
+    .fetch_idx_i(fetch_idx), .fetch2_i(fetch2_fire), .fetch2_idx_i(fetch2_idx), .node_i(node_fire), .node_idx_i(node_tag), .node_leaf_i(node_is_leaf),
     .node_job_i(job_push), .node_tests_i(CountW'(node_count)), .trav_i(trav_valid), .trav_idx_i(trav_tag),
     .trav_overflow_i(trav_overflow), .issue_i(tri_fire), .issue_idx_i(tri_tag), .retire_i(isect_valid),
     .retire_idx_i(isect_tag), .exit_i(exit_valid), .exit_idx_i(exit_idx), .exit_done_i(exit_done),
@@ -351,7 +374,10 @@ module rt_core #(
     .list_req_i(list_req_valid && list_req_ready), .list_entry_i(entry_fire), .isect_in_i(tri_fire),
     .isect_stall_i(tri_valid && !isect_in_ready), .isect_out_i(isect_valid), .exit_req_i(is_exit),
     .exit_i(exit_valid), .exit_idx_i(exit_idx), .out_i(out_fire), .hit_valid_i(hit_valid_o), .hit_ready_i,
-    .cache_hit_i(cache_hit), .cache_miss_i(cache_miss), .mem_wait_i(mem_wait), .perf_o
+    .cache_hit_i(cache_hit), .cache_miss_i(cache_miss), .mem_wait_i(mem_wait),
+    .node_wait_i(fetch_valid && !node_req_ready), .list_wait_i(list_req_valid && !list_req_ready),
+    .tri_wait_i(tri_wait), .cache_merge_i(cache_merge), .cache_wait_inflight_i(cache_wait_inflight),
+    .cache_wait_mshr_i(cache_wait_mshr), .perf_o
   );
 
 endmodule

@@ -26,9 +26,9 @@ module rt_mem_arb #(
   output logic                   mem_req_valid_o,
   input  logic                   mem_req_ready_i,
   output logic [AddrWidth-1:0]   mem_req_addr_o,
-  output logic [7:0]             mem_req_tag_o,
+  output logic [15:0]            mem_req_tag_o,
   input  logic                   mem_resp_valid_i,
-  input  logic [7:0]             mem_resp_tag_i,
+  input  logic [15:0]            mem_resp_tag_i,
   input  logic [127:0]           mem_resp_data_i
 );
 
@@ -69,7 +69,7 @@ module rt_mem_arb #(
 
   assign mem_req_valid_o = gnt_valid;
   assign mem_req_addr_o = req_addr_i[AddrWidth*gnt +: AddrWidth];
-  assign mem_req_tag_o = 8'({2'(gnt), req_id_i[IdW*gnt +: IdW]});
+  assign mem_req_tag_o = 16'({2'(gnt), req_id_i[IdW*gnt +: IdW]});
 
   logic [1:0] resp_cache;
   assign resp_cache = mem_resp_tag_i[IdW +: 2];

@@ -1,7 +1,9 @@
 // rt_mem_system: the core's memory side. Three non-blocking direct-mapped
 // caches (rtl/rt_cache.sv) share one memory port (rtl/rt_mem_arb.sv):
 //
-//   node port:  a byte address -> the node cache line holding it
+//   node port:  a byte address -> the node cache line holding it; a second
+//               node port takes misses only, so that a miss does not take
+//               a cycle from the hits of the first
 //   list port:  a list entry's byte address -> list cache -> the entry's
 //               triangle id -> triangle cache -> the triangle's record
 //
@@ -10,7 +12,7 @@
 // valid/ready; all but the node request follow picorv32's rule (checked): a
 // node request may change or drop while not ready (the cache decides each
 // cycle). The memory tag is {cache (node 0, list 1, triangle 2), miss
-// register, beat}, zero-extended to 8 bits.
+// register, beat}, zero-extended to 16 bits.
 `default_nettype none
 
 module rt_mem_system #(
@@ -23,6 +25,8 @@ module rt_mem_system #(
   parameter int unsigned NodeLineBeats = 2,
   parameter int unsigned ListLineBeats = 2,
   parameter int unsigned CacheMshrs = 8,
+  // Requests one miss register answers (rt_cache Targets): 1 = no merging.
+  parameter int unsigned CacheTargets = 8,
   // Beats of a triangle record: kdrt_pkg::img_tri_beats of the format (3 for fp32).
   parameter int unsigned TriLineBeats = 3,
   localparam int unsigned TriBits = 128 * TriLineBeats
@@ -35,6 +39,11 @@ module rt_mem_system #(
   output logic                         node_req_ready_o,
   input  logic [TagWidth-1:0]          node_req_tag_i,
   input  logic [AddrWidth-1:0]         node_req_addr_i,
+  // a second node request, taken only if it misses (rt_cache MissPort)
+  input  logic                         node_req2_valid_i,
+  output logic                         node_req2_ready_o,
+  input  logic [TagWidth-1:0]          node_req2_tag_i,
+  input  logic [AddrWidth-1:0]         node_req2_addr_i,
   output logic                         node_resp_valid_o,
   input  logic                         node_resp_ready_i,
   output logic [TagWidth-1:0]          node_resp_tag_o,
@@ -53,13 +62,17 @@ module rt_mem_system #(
   output logic                         mem_req_valid_o,
   input  logic                         mem_req_ready_i,
   output logic [AddrWidth-1:0]         mem_req_addr_o,
-  output logic [7:0]                   mem_req_tag_o,
+  output logic [15:0]                  mem_req_tag_o,
   input  logic                         mem_resp_valid_i,
-  input  logic [7:0]                   mem_resp_tag_i,
+  input  logic [15:0]                  mem_resp_tag_i,
   input  logic [127:0]                 mem_resp_data_i,
   // events this cycle: node, list, triangle cache (bits 0, 1, 2)
   output logic [2:0]                   hit_o,
   output logic [2:0]                   miss_o,
+  output logic [2:0]                   merge_o,          // a miss joined a line being fetched
+  output logic [2:0]                   wait_inflight_o,  // a miss waits on a line being fetched
+  output logic [2:0]                   wait_mshr_o,      // a miss waits for a free miss register
+  output logic                         tri_wait_o,       // a list entry waits for the triangle cache
   output logic                         entry_fire_o,  // a list entry went on to the triangle cache
   output logic                         mem_wait_o     // a cache waits for memory
 );
@@ -71,21 +84,26 @@ module rt_mem_system #(
   localparam int unsigned MemIdW = ((CacheMshrs > 1) ? $clog2(CacheMshrs) : 1) + 2;
 
   logic [2:0]           mem_valid, mem_ready, mem_resp_valid, filling;
+  logic [1:0]           unused_req2_ready;  // the list and triangle caches have no miss-only port
   logic [AddrWidth-1:0] node_mem_addr, list_mem_addr, tri_mem_addr;
   logic [MemIdW-1:0]    node_mem_id, list_mem_id, tri_mem_id, mem_resp_id;
   logic [127:0]         mem_resp_data;
 
   rt_cache #(.Lines(NodeCacheLines), .LineBeats(NodeLineBeats), .KeyWidth(AddrWidth - NodeOffW),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth), .Mshrs(CacheMshrs)) u_node_cache (
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets), .MissPort(1'b1)) u_node_cache (
     .clk_i, .rst_ni,
     .req_valid_i(node_req_valid_i), .req_ready_o(node_req_ready_o),
     .req_key_i(node_req_addr_i[AddrWidth-1:NodeOffW]),
     .req_addr_i({node_req_addr_i[AddrWidth-1:NodeOffW], {NodeOffW{1'b0}}}), .req_tag_i(node_req_tag_i),
+    .req2_valid_i(node_req2_valid_i), .req2_ready_o(node_req2_ready_o),
+    .req2_key_i(node_req2_addr_i[AddrWidth-1:NodeOffW]),
+    .req2_addr_i({node_req2_addr_i[AddrWidth-1:NodeOffW], {NodeOffW{1'b0}}}), .req2_tag_i(node_req2_tag_i),
     .resp_valid_o(node_resp_valid_o), .resp_ready_i(node_resp_ready_i), .resp_data_o(node_resp_line_o),
     .resp_tag_o(node_resp_tag_o),
     .mem_req_valid_o(mem_valid[0]), .mem_req_ready_i(mem_ready[0]), .mem_req_addr_o(node_mem_addr),
     .mem_req_id_o(node_mem_id), .mem_resp_valid_i(mem_resp_valid[0]), .mem_resp_id_i(mem_resp_id),
-    .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[0]), .miss_o(miss_o[0]), .filling_o(filling[0])
+    .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[0]), .miss_o(miss_o[0]), .merge_o(merge_o[0]),
+    .wait_inflight_o(wait_inflight_o[0]), .wait_mshr_o(wait_mshr_o[0]), .filling_o(filling[0])
   );
 
   // The list cache's tag carries the entry's offset in its line.
@@ -95,33 +113,40 @@ module rt_mem_system #(
   logic [ListOffW-1:0]          entry_off;
   logic [TriIdxWidth-1:0]       entry_tri;
   rt_cache #(.Lines(ListCacheLines), .LineBeats(ListLineBeats), .KeyWidth(AddrWidth - ListOffW),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth + ListOffW), .Mshrs(CacheMshrs)) u_list_cache (
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth + ListOffW), .Mshrs(CacheMshrs), .Targets(CacheTargets))
+      u_list_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_req_valid_i), .req_ready_o(list_req_ready_o),
     .req_key_i(list_req_addr_i[AddrWidth-1:ListOffW]),
     .req_addr_i({list_req_addr_i[AddrWidth-1:ListOffW], {ListOffW{1'b0}}}),
     .req_tag_i({list_req_tag_i, list_req_addr_i[ListOffW-1:0]}),
+    .req2_valid_i(1'b0), .req2_ready_o(unused_req2_ready[0]), .req2_key_i('0), .req2_addr_i('0), .req2_tag_i('0),
     .resp_valid_o(list_resp_valid), .resp_ready_i(tri_req_ready), .resp_data_o(list_line),
     .resp_tag_o({entry_tag, entry_off}),
     .mem_req_valid_o(mem_valid[1]), .mem_req_ready_i(mem_ready[1]), .mem_req_addr_o(list_mem_addr),
     .mem_req_id_o(list_mem_id), .mem_resp_valid_i(mem_resp_valid[1]), .mem_resp_id_i(mem_resp_id),
-    .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[1]), .miss_o(miss_o[1]), .filling_o(filling[1])
+    .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[1]), .miss_o(miss_o[1]), .merge_o(merge_o[1]),
+    .wait_inflight_o(wait_inflight_o[1]), .wait_mshr_o(wait_mshr_o[1]), .filling_o(filling[1])
   );
   assign entry_tri = TriIdxWidth'(list_line[8 * kdrt_pkg::ListEntryBytes * entry_off[ListOffW-1:EntryShift] +: 32]);
   assign entry_fire_o = list_resp_valid && tri_req_ready;
+  assign tri_wait_o = list_resp_valid && !tri_req_ready;
 
   // A triangle line is one record, named by the triangle id.
   rt_cache #(.Lines(TriCacheLines), .LineBeats(TriLineBeats), .KeyWidth(TriIdxWidth),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth + TriIdxWidth), .Mshrs(CacheMshrs)) u_tri_cache (
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth + TriIdxWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets))
+      u_tri_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_resp_valid), .req_ready_o(tri_req_ready), .req_key_i(entry_tri),
     .req_addr_i(tri_base_i + (AddrWidth'(entry_tri) << 4) * AddrWidth'(TriLineBeats)),
     .req_tag_i({entry_tag, entry_tri}),
+    .req2_valid_i(1'b0), .req2_ready_o(unused_req2_ready[1]), .req2_key_i('0), .req2_addr_i('0), .req2_tag_i('0),
     .resp_valid_o(tri_resp_valid_o), .resp_ready_i(tri_resp_ready_i), .resp_data_o(tri_resp_o),
     .resp_tag_o({tri_resp_tag_o, tri_resp_id_o}),
     .mem_req_valid_o(mem_valid[2]), .mem_req_ready_i(mem_ready[2]), .mem_req_addr_o(tri_mem_addr),
     .mem_req_id_o(tri_mem_id), .mem_resp_valid_i(mem_resp_valid[2]), .mem_resp_id_i(mem_resp_id),
-    .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[2]), .miss_o(miss_o[2]), .filling_o(filling[2])
+    .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[2]), .miss_o(miss_o[2]), .merge_o(merge_o[2]),
+    .wait_inflight_o(wait_inflight_o[2]), .wait_mshr_o(wait_mshr_o[2]), .filling_o(filling[2])
   );
 
   rt_mem_arb #(.N(3), .AddrWidth(AddrWidth), .IdW(MemIdW)) u_mem_arb (
@@ -134,7 +159,7 @@ module rt_mem_system #(
   );
   assign mem_wait_o = (|mem_valid) || (|filling);
 
-  rt_stream_check #(.Width(AddrWidth + 8), .Name("rt_mem_system memory request")) u_mem_check (
+  rt_stream_check #(.Width(AddrWidth + 16), .Name("rt_mem_system memory request")) u_mem_check (
     .clk_i, .rst_ni, .valid_i(mem_req_valid_o), .ready_i(mem_req_ready_i), .payload_i({mem_req_addr_o, mem_req_tag_o})
   );
   rt_stream_check #(.Width(TagWidth + AddrWidth), .Name("rt_mem_system list request")) u_list_check (
@@ -154,7 +179,7 @@ module rt_mem_system #(
   // line's other entries and the node address bits within a line are unused.
   /* verilator lint_off UNUSEDSIGNAL */
   logic unused_bits;
-  assign unused_bits = ^{list_line, entry_off, node_req_addr_i};
+  assign unused_bits = ^{list_line, entry_off, node_req_addr_i, node_req2_addr_i, unused_req2_ready};
   /* verilator lint_on UNUSEDSIGNAL */
 
 endmodule

@@ -7,7 +7,8 @@
 // taken or finished, leaf exit or hit out) and a cache waits for memory;
 // stall_stack when a thread in EXIT is not the one the leaf exit takes;
 // stall_backpressure when a hit record waits on hit_ready_i or a node
-// response or triangle waits on the unit it goes to.
+// response or triangle waits on the unit it goes to. The waits, merges and
+// stalls per cache and per unit are passed through as they come.
 `default_nettype none
 
 module rt_perf_events #(
@@ -36,6 +37,12 @@ module rt_perf_events #(
   input  logic [2:0]         cache_hit_i,    // node, list, triangle cache
   input  logic [2:0]         cache_miss_i,
   input  logic               mem_wait_i,     // a cache waits for memory
+  input  logic               node_wait_i,    // a node fetch is offered and not taken
+  input  logic               list_wait_i,    // a list entry request is offered and not taken
+  input  logic               tri_wait_i,     // a list entry waits for the triangle cache
+  input  logic [2:0]         cache_merge_i,  // node, list, triangle cache
+  input  logic [2:0]         cache_wait_inflight_i,
+  input  logic [2:0]         cache_wait_mshr_i,
   output kdrt_pkg::perf_t    perf_o
 );
 
@@ -59,6 +66,16 @@ module rt_perf_events #(
   assign perf_o.ray_out = hit_valid_i && hit_ready_i;
   assign perf_o.overflow = overflow_i;
   assign perf_o.trav_leaf = node_i && node_leaf_i;
+  assign perf_o.busy = busy_i;
+  assign perf_o.node_wait = node_wait_i;
+  assign perf_o.list_wait = list_wait_i;
+  assign perf_o.tri_wait = tri_wait_i;
+  assign {perf_o.tri_wait_inflight, perf_o.list_wait_inflight, perf_o.node_wait_inflight} = cache_wait_inflight_i;
+  assign {perf_o.tri_wait_mshr, perf_o.list_wait_mshr, perf_o.node_wait_mshr} = cache_wait_mshr_i;
+  assign {perf_o.tri_merge, perf_o.list_merge, perf_o.node_merge} = cache_merge_i;
+  assign perf_o.trav_stall = node_stall_i;
+  assign perf_o.isect_stall = isect_stall_i;
+  assign perf_o.hit_stall = hit_valid_i && !hit_ready_i;
 
 endmodule
 

@@ -2,7 +2,7 @@
 // and its leaf-test counters.
 //
 //   FREE --alloc--> SETUP --clip--> FETCH, or DONE (the ray misses the box)
-//   FETCH --fetch--> WAIT_NODE --node--> TRAV (inner node), LEAF (a leaf with
+//   FETCH --fetch (either port)--> WAIT_NODE --node--> TRAV (inner node), LEAF (a leaf with
 //                    tests) or EXIT (an empty leaf)
 //   TRAV --trav--> FETCH, or DONE (the stack overflowed)
 //   LEAF --> EXIT once all of the leaf's tests are issued and their results back
@@ -32,6 +32,9 @@ module rt_thread_fsm #(
   output logic [Threads-1:0]    exit_o,
   output logic [Threads-1:0]    done_o,
   output logic [ThW-1:0]        alloc_idx_o,
+  // every thread's state, 3 bits each, thread t in [3t+2:3t]: the encoding
+  // of state_e below (sim/sim_report.cpp names them in this order)
+  output logic [3*Threads-1:0]  state_o,
   // events
   input  logic                  alloc_i,
   input  logic                  setup_i,
@@ -41,6 +44,8 @@ module rt_thread_fsm #(
   input  logic                  clip_miss_i,
   input  logic                  fetch_i,
   input  logic [ThW-1:0]        fetch_idx_i,
+  input  logic                  fetch2_i,      // a second fetch (the node cache's miss-only port), another thread
+  input  logic [ThW-1:0]        fetch2_idx_i,
   input  logic                  node_i,
   input  logic [ThW-1:0]        node_idx_i,
   input  logic                  node_leaf_i,
@@ -86,7 +91,7 @@ module rt_thread_fsm #(
   assign on_alloc = event_threads(alloc_i, alloc_idx_o);
   assign on_setup = event_threads(setup_i, setup_idx_i);
   assign on_clip = event_threads(clip_i, clip_idx_i);
-  assign on_fetch = event_threads(fetch_i, fetch_idx_i);
+  assign on_fetch = event_threads(fetch_i, fetch_idx_i) | event_threads(fetch2_i, fetch2_idx_i);
   assign on_node = event_threads(node_i, node_idx_i);
   assign on_trav = event_threads(trav_i, trav_idx_i);
   assign on_issue = event_threads(issue_i, issue_idx_i);
@@ -111,6 +116,10 @@ module rt_thread_fsm #(
       endcase
     end
   end
+  for (genvar t = 0; t < Threads; t++) begin : g_state_out
+    assign state_o[3*t +: 3] = state_q[t];
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       for (int t = 0; t < Threads; t++) state_q[t] <= SFree;

@@ -6,8 +6,10 @@
 #include <cstdio>
 #include <cstring>
 #include <sstream>
+#include <type_traits>
 
 #include "Vrt_core.h"
+#include "Vrt_core_rt_core.h"
 #include "fp/format.h"
 #include "sim/sim_ctrl.h"
 #include "trace/frame.h"
@@ -15,6 +17,22 @@
 
 namespace kdrt::sim {
 namespace {
+
+// Thread t's 3-bit state from rt_core's thread_state_o, whatever type
+// Verilator gave the port (an integer up to 64 bits, else words).
+template <class T>
+unsigned ThreadState(const T& v, int t) {
+  if constexpr (std::is_integral_v<T>) {
+    return static_cast<unsigned>((static_cast<uint64_t>(v) >> (3 * t)) & 7u);
+  } else {
+    unsigned s = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int b = 3 * t + k;
+      s |= ((v.data()[b / 32] >> (b % 32)) & 1u) << k;
+    }
+    return s;
+  }
+}
 
 void SetWide(uint32_t* words, int count, const uint32_t* values) {
   for (int i = 0; i < count; ++i) words[i] = values[i];
@@ -86,10 +104,13 @@ void CoreHarness::BeginCycle(uint64_t cycle) {
 void CoreHarness::EndCycle(uint64_t cycle) {
   const uint32_t perf = top_.perf_o;
   for (int b = 0; b < kPerfBits; ++b) result_.perf[b] += (perf >> b) & 1u;
+  for (int t = 0; t < static_cast<int>(Vrt_core_rt_core::Threads); ++t) {
+    ++result_.thread_states[ThreadState(top_.thread_state_o, t)];
+  }
 
   if (top_.mem_req_valid_o && top_.mem_req_ready_i) {
     try {
-      memory_.Request(top_.mem_req_addr_o, static_cast<uint8_t>(top_.mem_req_tag_o), cycle);
+      memory_.Request(top_.mem_req_addr_o, static_cast<uint16_t>(top_.mem_req_tag_o), cycle);
     } catch (const MemoryError& e) {
       throw SimFailure(std::string("harness error: ") + e.what());
     }

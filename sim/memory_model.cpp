@@ -37,7 +37,7 @@ void MemoryModel::LoadImage(const std::vector<uint8_t>& bytes) {
   image_ = bytes;
 }
 
-void MemoryModel::Request(uint64_t addr, uint8_t tag, uint64_t cycle) {
+void MemoryModel::Request(uint64_t addr, uint16_t tag, uint64_t cycle) {
   if (addr % kBeatBytes != 0) {
     throw MemoryError("memory request at " + Hex(addr) + " (cycle " + std::to_string(cycle) +
                       ") is not 16-byte aligned");

@@ -37,7 +37,7 @@ struct MemoryConfig {
 };
 
 struct MemoryResponse {
-  uint8_t tag = 0;
+  uint16_t tag = 0;
   uint64_t addr = 0;
   uint8_t data[kBeatBytes] = {};
 };
@@ -47,7 +47,7 @@ struct MemoryResponse {
 class MemoryPort {
  public:
   virtual ~MemoryPort() = default;
-  virtual void Request(uint64_t addr, uint8_t tag, uint64_t cycle) = 0;
+  virtual void Request(uint64_t addr, uint16_t tag, uint64_t cycle) = 0;
   virtual bool Respond(uint64_t cycle, MemoryResponse* out) = 0;
   virtual size_t outstanding() const = 0;
 };
@@ -64,7 +64,7 @@ class MemoryModel : public MemoryPort {
 
   // A read of the 16 bytes at `addr` (16-byte aligned), accepted in cycle
   // `cycle`. Throws MemoryError outside the memory or when misaligned.
-  void Request(uint64_t addr, uint8_t tag, uint64_t cycle) override;
+  void Request(uint64_t addr, uint16_t tag, uint64_t cycle) override;
 
   // Advances to cycle `cycle` (call once per cycle, increasing) and returns
   // true with the beat to drive on the response port this cycle, if any.
@@ -80,7 +80,7 @@ class MemoryModel : public MemoryPort {
   struct Pending {
     uint64_t ready_cycle;
     uint64_t addr;
-    uint8_t tag;
+    uint16_t tag;
   };
   MemoryConfig config_;
   std::vector<uint8_t> image_;

@@ -23,6 +23,24 @@ namespace {
 namespace fs = std::filesystem;
 
 const char* const kBuildDir = KDRT_SIM_BUILD_DIR;
+const char* const kSourceDir = KDRT_SIM_SOURCE_DIR;
+
+// Whether the model at `path` is older than a source it is built from: the
+// RTL, the harness and the reference code it links. A model built before an
+// RTL change must not run silently (`cmake --build` of one target leaves the
+// other models as they were).
+bool OlderThanSources(const fs::path& path) {
+  std::error_code ec;
+  const auto built = fs::last_write_time(path, ec);
+  if (ec) return true;
+  for (const char* dir : {"rtl", "sim", "sw", "cmake"}) {
+    for (fs::recursive_directory_iterator it(fs::path(kSourceDir) / dir, ec), end; !ec && it != end;
+         it.increment(ec)) {
+      if (it->is_regular_file(ec) && fs::last_write_time(it->path(), ec) > built) return true;
+    }
+  }
+  return false;
+}
 
 // A directory that is removed with everything in it when it goes out of scope.
 class TempDir {
@@ -78,7 +96,9 @@ ModelLocation LocateModel(const ConfigChoice& choice) {
     const std::string key = choice.config.Key();
     loc = {std::string(kBuildDir) + "/sim-models/" + key + "/kdrt-sim", "kdrt-sim-model-" + key};
   }
-  loc.built = fs::exists(loc.path);
+  const bool exists = fs::exists(loc.path);
+  loc.stale = exists && OlderThanSources(loc.path);
+  loc.built = exists && !loc.stale;
   return loc;
 }
 
@@ -93,7 +113,7 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
     int fd;
     ~Unlock() { close(fd); }
   } unlock{lock};
-  if (fs::exists(loc.path)) return;  // another run built it meanwhile
+  if (fs::exists(loc.path) && !OlderThanSources(loc.path)) return;  // another run built it meanwhile
 
   if (!choice.prebuilt) {
     // The list sim/CMakeLists.txt defines a target per line of: the key and
@@ -115,9 +135,10 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
   }
   const std::string log = (models_dir / (choice.config.Key() + ".build.log")).string();
   std::fprintf(stderr,
-               "kdrt sim: building the simulation model %s (Verilator, once; about 1-2 minutes on 2 cores)\n"
+               "kdrt sim: %s the simulation model %s (Verilator, once; about 1-2 minutes on 2 cores)\n"
                "kdrt sim: log in %s\n",
-               choice.config.Key().c_str(), log.c_str());
+               loc.stale ? "sources changed since it was built: rebuilding" : "building", choice.config.Key().c_str(),
+               log.c_str());
   const auto start = std::chrono::steady_clock::now();
   // Configure first: the new line in models.txt defines the target.
   const std::string cmake = std::string("'") + KDRT_CMAKE_COMMAND + "'";
@@ -128,6 +149,9 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
     throw std::runtime_error("building the simulation model " + choice.config.Key() + " failed; the end of " + log +
                              ":\n" + LastLines(log, 25));
   }
+  // A source the model does not depend on leaves the target as it was:
+  // mark it current, so that it is not rebuilt again on every run.
+  fs::last_write_time(loc.path, fs::file_time_type::clock::now());
   std::fprintf(stderr, "kdrt sim: model built in %.0f s\n",
                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 #else

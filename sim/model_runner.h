@@ -18,7 +18,8 @@ namespace kdrt::sim {
 struct ModelLocation {
   std::string path;    // the executable
   std::string target;  // its CMake target
-  bool built = false;
+  bool built = false;  // it exists and is newer than every source it is built from
+  bool stale = false;  // it exists, but a source (rtl/, sim/, sw/) changed since
 };
 ModelLocation LocateModel(const ConfigChoice& choice);
 

@@ -11,9 +11,15 @@
 
 namespace kdrt::sim {
 
+// rt_thread_fsm's states in the order of its state_e encoding (state_o).
+inline constexpr const char* kThreadStateNames[8] = {"free", "setup", "fetch", "wait_node",
+                                                     "trav", "leaf",  "exit",  "done"};
+
 struct HarnessResult {
   uint64_t cycles = 0;
   std::array<uint64_t, kPerfBits> perf{};  // cycles in which each perf_o bit was set
+  // thread-cycles spent in each rt_thread_fsm state (kThreadStateNames order)
+  std::array<uint64_t, 8> thread_states{};
   std::vector<Hit> hits;                   // by ray id, as the RTL returned them
   std::vector<uint8_t> overflow;           // by ray id: the record had hit_overflow_o
   uint64_t overflows = 0;

@@ -24,7 +24,7 @@ class ScMemory : public sc_core::sc_module, public MemoryIf {
       : sc_core::sc_module(name), model_(config) {
     model_.LoadImage(image);
   }
-  void Request(uint64_t addr, uint8_t tag, uint64_t cycle) override { model_.Request(addr, tag, cycle); }
+  void Request(uint64_t addr, uint16_t tag, uint64_t cycle) override { model_.Request(addr, tag, cycle); }
   bool Respond(uint64_t cycle, MemoryResponse* out) override { return model_.Respond(cycle, out); }
   size_t outstanding() const override { return model_.outstanding(); }
   const MemoryModel& model() const { return model_; }

@@ -19,8 +19,31 @@ constexpr int kNodeHit = Bit("node_hit"), kNodeMiss = Bit("node_miss"), kListHit
 constexpr int kListMiss = Bit("list_miss"), kTriHit = Bit("tri_hit"), kTriMiss = Bit("tri_miss");
 constexpr int kStallMem = Bit("stall_mem"), kStallStack = Bit("stall_stack");
 constexpr int kStallBackpressure = Bit("stall_backpressure");
+constexpr int kBusy = Bit("busy"), kTravStall = Bit("trav_stall"), kIsectStall = Bit("isect_stall");
+constexpr int kHitStall = Bit("hit_stall");
 
 double Ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
+
+// One cache's waits as fractions of all cycles: a request offered and not
+// taken, and of those the misses waiting on a line being fetched (its miss
+// register full or answering) and on a free miss register; the rest are hits
+// waiting for the response register. Merges are counts.
+nlohmann::json CacheWaits(const std::array<uint64_t, kPerfBits>& p, const std::string& cache, double cycles) {
+  auto at = [&](const std::string& field) { return static_cast<double>(p[Bit(field)]); };
+  return {{"wait", Ratio(at(cache + "_wait"), cycles)},
+          {"wait_in_flight", Ratio(at(cache + "_wait_inflight"), cycles)},
+          {"wait_no_mshr", Ratio(at(cache + "_wait_mshr"), cycles)},
+          {"merged_misses", p[Bit(cache + "_merge")]}};
+}
+
+// The share of thread-cycles in each state.
+nlohmann::json ThreadStates(const HarnessResult& r) {
+  double total = 0;
+  for (uint64_t n : r.thread_states) total += static_cast<double>(n);
+  nlohmann::json j;
+  for (int s = 0; s < 8; ++s) j[kThreadStateNames[s]] = Ratio(static_cast<double>(r.thread_states[s]), total);
+  return j;
+}
 
 }  // namespace
 
@@ -63,6 +86,21 @@ nlohmann::json ReportJson(const ReportInputs& in) {
        {{"memory", Ratio(p[kStallMem], cycles)},
         {"stack", Ratio(p[kStallStack], cycles)},
         {"backpressure", Ratio(p[kStallBackpressure], cycles)}}},
+      {"waits",
+       {{"node", CacheWaits(p, "node", cycles)},
+        {"list", CacheWaits(p, "list", cycles)},
+        {"tri", CacheWaits(p, "tri", cycles)}}},
+      // A unit stalls when its input waits on it, starves when rays are in
+      // flight and it has nothing to take.
+      {"unit_stalls",
+       {{"traversal", Ratio(p[kTravStall], cycles)},
+        {"intersection", Ratio(p[kIsectStall], cycles)},
+        {"hit_out", Ratio(p[kHitStall], cycles)}}},
+      {"unit_starve",
+       {{"traversal", Ratio(static_cast<double>(p[kBusy]) - p[kTravBusy] - p[kTravStall], cycles)},
+        {"intersection", Ratio(static_cast<double>(p[kBusy]) - p[kIsectBusy] - p[kIsectStall], cycles)}}},
+      {"busy", Ratio(p[kBusy], cycles)},
+      {"thread_states", ThreadStates(r)},
       {"cache_hit_rate",
        {{"node", Ratio(p[kNodeHit], p[kNodeHit] + p[kNodeMiss])},
         {"list", Ratio(p[kListHit], p[kListHit] + p[kListMiss])},
@@ -74,6 +112,11 @@ nlohmann::json ReportJson(const ReportInputs& in) {
         {"tri_tests", Ratio(tests, rays)}}},
       {"bound_cycles_per_ray", Ratio(bound_cycles, rays)},
       {"efficiency", Ratio(bound_cycles, cycles)},
+      // The memory's own bound: the bytes this run read at the modelled
+      // bandwidth. Where it exceeds the core's bound, the memory limits.
+      {"memory_bound_cycles_per_ray", Ratio(Ratio(in.run->mem_bytes_read, rays), in.memory.bytes_per_cycle)},
+      {"efficiency_vs_both_bounds",
+       Ratio(std::max(bound_cycles, Ratio(in.run->mem_bytes_read, in.memory.bytes_per_cycle)), cycles)},
       {"sim_seconds", r.wall_seconds},
       {"sim_cycles_per_second", Ratio(cycles, r.wall_seconds)},
       {"sim_rays_per_second", Ratio(rays, r.wall_seconds)},
@@ -110,12 +153,34 @@ void PrintReport(const nlohmann::json& j, std::FILE* out) {
   std::fprintf(out, "rays per cycle %.4f\n", d(j["rays_per_cycle"]));
   std::fprintf(out, "cycles per ray %.2f (bound %.2f: max(nodes, tests) per ray, efficiency %.1f %%)\n",
                d(j["cycles_per_ray"]), d(j["bound_cycles_per_ray"]), 100 * d(j["efficiency"]));
+  std::fprintf(out, "memory bound   %.2f cycles per ray (bytes per ray / bytes per cycle; efficiency %.1f %% against the"
+               " larger bound)\n",
+               d(j["memory_bound_cycles_per_ray"]), 100 * d(j["efficiency_vs_both_bounds"]));
   const auto& ut = j["utilisation"];
   std::fprintf(out, "utilisation    traversal %.1f %%, list %.1f %%, intersection %.1f %%\n",
                100 * d(ut["traversal"]), 100 * d(ut["list"]), 100 * d(ut["intersection"]));
   const auto& st = j["stalls"];
   std::fprintf(out, "stalls         memory %.1f %%, stack %.1f %%, backpressure %.1f %% of cycles\n",
                100 * d(st["memory"]), 100 * d(st["stack"]), 100 * d(st["backpressure"]));
+  const auto& w = j["waits"];
+  std::fprintf(out, "cache waits    node %.1f %%, list %.1f %%, triangle %.1f %% of cycles"
+               " (on a line in flight %.1f/%.1f/%.1f %%, no miss register %.1f/%.1f/%.1f %%)\n",
+               100 * d(w["node"]["wait"]), 100 * d(w["list"]["wait"]), 100 * d(w["tri"]["wait"]),
+               100 * d(w["node"]["wait_in_flight"]), 100 * d(w["list"]["wait_in_flight"]),
+               100 * d(w["tri"]["wait_in_flight"]), 100 * d(w["node"]["wait_no_mshr"]),
+               100 * d(w["list"]["wait_no_mshr"]), 100 * d(w["tri"]["wait_no_mshr"]));
+  std::fprintf(out, "merged misses  node %llu, list %llu, triangle %llu\n", u(w["node"]["merged_misses"]),
+               u(w["list"]["merged_misses"]), u(w["tri"]["merged_misses"]));
+  const auto& us = j["unit_stalls"];
+  const auto& uv = j["unit_starve"];
+  std::fprintf(out, "units          traversal stalled %.1f %%, starved %.1f %%; intersection stalled %.1f %%,"
+               " starved %.1f %%; hit out stalled %.1f %%\n",
+               100 * d(us["traversal"]), 100 * d(uv["traversal"]), 100 * d(us["intersection"]),
+               100 * d(uv["intersection"]), 100 * d(us["hit_out"]));
+  const auto& ts = j["thread_states"];
+  std::fprintf(out, "thread states ");
+  for (const char* name : kThreadStateNames) std::fprintf(out, " %s %.1f %%", name, 100 * d(ts[name]));
+  std::fprintf(out, "\n");
   const auto& ch = j["cache_hit_rate"];
   std::fprintf(out, "cache hits     node %.1f %%, list %.1f %%, triangle %.1f %%\n", 100 * d(ch["node"]),
                100 * d(ch["list"]), 100 * d(ch["tri"]));

@@ -4,7 +4,14 @@
 // outstanding request and that request's line (checked against memory).
 // Every request is answered exactly once, hits + misses == requests, no more
 // misses are in flight than there are miss registers, and the run must show
-// that the cache really overlaps misses and hits under a miss. Memory answers
+// that the cache really overlaps misses and hits under a miss. With Targets >
+// 1, misses to a line already being fetched must merge (merge_o) and fetch
+// nothing: memory sees exactly one fetch per miss that did not merge; with
+// Targets = 1 nothing merges. With MissPort, a second requester offers its
+// own requests on the miss-only port: what it takes must be a miss, at most
+// one miss is taken per cycle, and a request it leaves may move to the first
+// port. A wait reason (wait_inflight_o, wait_mshr_o)
+// is only given for a request not taken. Memory answers
 // each beat after a random latency and in random order; the requester sends
 // in random bursts and applies random backpressure.
 #include <cstdio>
@@ -14,6 +21,9 @@
 
 #include "Vrt_cache_lines2.h"
 #include "Vrt_cache_lines3.h"
+#include "Vrt_cache_merge2.h"
+#include "Vrt_cache_merge3.h"
+#include "Vrt_cache_missport.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -32,7 +42,7 @@ struct Request {
 };
 
 template <class Dut>
-bool Run(const char* name, int beats, int mshrs, uint64_t count) {
+bool Run(const char* name, int beats, int mshrs, int targets, bool miss_port, uint64_t count) {
   SimCtrl<Dut> sim;
   Dut& dut = sim.top();
   std::mt19937 rng(5);
@@ -51,10 +61,20 @@ bool Run(const char* name, int beats, int mshrs, uint64_t count) {
   std::vector<Beat> in_flight;
   // Memory beats requested per miss register, to count the misses in flight.
   std::map<uint32_t, int> beats_owed;
-  uint64_t sent = 0, answered = 0, hits = 0, misses = 0, hits_under_miss = 0;
+  uint64_t sent = 0, answered = 0, hits = 0, misses = 0, hits_under_miss = 0, merges = 0, fetched_beats = 0;
+  uint64_t waits_in_flight = 0, waits_no_mshr = 0;
   size_t max_misses_in_flight = 0;
-  Request pending{};
-  bool have_pending = false;
+  Request pending{}, pending2{};
+  bool have_pending = false, have_pending2 = false;
+  uint64_t taken2 = 0;  // requests the miss-only port took
+  auto new_request = [&](Request* r) {
+    const uint32_t key = key_dist(rng);
+    const size_t pick = std::uniform_int_distribution<size_t>(0, free_tags.size() - 1)(rng);
+    const uint32_t tag = free_tags[pick];
+    free_tags[pick] = free_tags.back();
+    free_tags.pop_back();
+    *r = Request{key, 0x1000u + key * 16u * static_cast<uint32_t>(beats), tag};
+  };
 
   auto fail = [&](const char* what) {
     std::printf("rt_cache %s: FAIL after %llu requests: %s\n", name,
@@ -67,16 +87,25 @@ bool Run(const char* name, int beats, int mshrs, uint64_t count) {
   sim.Reset();
   for (uint64_t cycle = 0; answered < count; ++cycle) {
     if (cycle > 200 * count + 1000) return fail("timeout");
-    if (!have_pending && sent < count && !free_tags.empty() && !bubble(rng)) {
-      const uint32_t key = key_dist(rng);
-      const size_t pick =
-          std::uniform_int_distribution<size_t>(0, free_tags.size() - 1)(rng);
-      const uint32_t tag = free_tags[pick];
-      free_tags[pick] = free_tags.back();
-      free_tags.pop_back();
-      pending = Request{key, 0x1000u + key * 16u * static_cast<uint32_t>(beats), tag};
+    if (!have_pending && sent + have_pending2 < count && !free_tags.empty() && !bubble(rng)) {
+      new_request(&pending);
       have_pending = true;
     }
+    // The miss-only port: its own requests; one it does not take may be
+    // withdrawn and come again on the first port (as rt_core's fetches do).
+    if (miss_port && have_pending2 && !have_pending && rng() % 4 == 0) {
+      pending = pending2;
+      have_pending = true;
+      have_pending2 = false;
+    }
+    if (miss_port && !have_pending2 && sent + have_pending < count && !free_tags.empty() && !bubble(rng)) {
+      new_request(&pending2);
+      have_pending2 = true;
+    }
+    dut.req2_valid_i = have_pending2;
+    dut.req2_key_i = pending2.key;
+    dut.req2_addr_i = pending2.addr;
+    dut.req2_tag_i = pending2.tag;
     dut.req_valid_i = have_pending;
     dut.req_key_i = pending.key;
     dut.req_addr_i = pending.addr;
@@ -105,22 +134,41 @@ bool Run(const char* name, int beats, int mshrs, uint64_t count) {
       in_flight.push_back(
           Beat{cycle + static_cast<uint64_t>(latency(rng)), dut.mem_req_addr_o, dut.mem_req_id_o});
       ++beats_owed[dut.mem_req_id_o >> 2];
+      ++fetched_beats;
       if (dut.mem_req_id_o >> 2 >= static_cast<uint32_t>(mshrs)) {
         return fail("memory id names no miss register");
       }
       if (beats_owed.size() > max_misses_in_flight) max_misses_in_flight = beats_owed.size();
     }
-    if (dut.hit_o && dut.miss_o) return fail("hit and miss at once");
+    const bool accept1 = dut.req_valid_i && dut.req_ready_o, accept2 = dut.req2_valid_i && dut.req2_ready_o;
+    if (!miss_port && dut.req2_ready_o) return fail("the miss-only port takes requests with MissPort = 0");
+    if (dut.hit_o && dut.miss_o && !accept2) return fail("hit and miss at once on one port");
+    if (accept2 && !dut.miss_o) return fail("the miss-only port took a request that is not a miss");
+    if (accept1 && accept2 && !dut.hit_o) return fail("two misses taken in one cycle");
     hits += dut.hit_o;
     misses += dut.miss_o;
+    merges += dut.merge_o;
+    waits_in_flight += dut.wait_inflight_o;
+    waits_no_mshr += dut.wait_mshr_o;
+    if (dut.merge_o && !dut.miss_o) return fail("a merge that is not a miss");
+    if ((dut.wait_inflight_o || dut.wait_mshr_o) && (dut.req_ready_o || !dut.req_valid_i)) {
+      return fail("a wait reason for a request that does not wait");
+    }
+    if (dut.wait_inflight_o && dut.wait_mshr_o) return fail("two wait reasons at once");
     if (dut.hit_o && !beats_owed.empty()) ++hits_under_miss;
-    if (dut.req_valid_i && dut.req_ready_o) {
+    if (accept1) {
       if (!dut.hit_o && !dut.miss_o) return fail("request accepted as neither hit nor miss");
       outstanding[pending.tag] = pending;
       have_pending = false;
       ++sent;
-    } else if (dut.hit_o || dut.miss_o) {
+    } else if (dut.hit_o || (dut.miss_o && !accept2)) {
       return fail("hit or miss event without an accepted request");
+    }
+    if (accept2) {
+      outstanding[pending2.tag] = pending2;
+      have_pending2 = false;
+      ++sent;
+      ++taken2;
     }
     if (dut.resp_valid_o && dut.resp_ready_i) {
       const uint32_t tag = dut.resp_tag_o;
@@ -162,12 +210,19 @@ bool Run(const char* name, int beats, int mshrs, uint64_t count) {
   }
   if (mshrs > 1 && max_misses_in_flight < 2) return fail("misses never overlapped");
   if (hits_under_miss == 0) return fail("no hit under a miss");
+  if (fetched_beats != (misses - merges) * static_cast<uint64_t>(beats)) {
+    return fail("memory beats fetched != beats of the misses that did not merge");
+  }
+  if (targets > 1 && merges == 0) return fail("no miss merged");
+  if (targets == 1 && merges != 0) return fail("a miss merged with Targets = 1");
+  if (waits_in_flight == 0 || waits_no_mshr == 0) return fail("a wait reason never seen");
+  if (miss_port && taken2 == 0) return fail("the miss-only port never took a miss");
   std::printf(
-      "rt_cache %s: PASS (%llu requests, %llu hits, %llu misses, %llu hits under miss, up to %zu "
-      "misses in flight)\n",
+      "rt_cache %s: PASS (%llu requests, %llu hits, %llu misses of which %llu merged, %llu hits under "
+      "miss, up to %zu misses in flight)\n",
       name, static_cast<unsigned long long>(count), static_cast<unsigned long long>(hits),
-      static_cast<unsigned long long>(misses), static_cast<unsigned long long>(hits_under_miss),
-      max_misses_in_flight);
+      static_cast<unsigned long long>(misses), static_cast<unsigned long long>(merges),
+      static_cast<unsigned long long>(hits_under_miss), max_misses_in_flight);
   return true;
 }
 
@@ -178,9 +233,13 @@ int main(int argc, char** argv) {
   using namespace kdrt::rtlbench;
   Verilated::commandArgs(argc, argv);
   const uint64_t count = LongRun() ? 2000000 : 200000;
-  // Miss register counts must match the verilated parameters.
-  bool ok = Run<Vrt_cache_lines2>("2-beat lines, 4 miss registers", 2, 4, count);
-  ok = Run<Vrt_cache_lines3>("3-beat lines, 3 miss registers", 3, 3, count) && ok;
+  // Miss register and target counts must match the verilated parameters.
+  bool ok = Run<Vrt_cache_lines2>("2-beat lines, 4 miss registers", 2, 4, 1, false, count);
+  ok = Run<Vrt_cache_lines3>("3-beat lines, 3 miss registers", 3, 3, 1, false, count) && ok;
+  ok = Run<Vrt_cache_merge2>("2-beat lines, 4 miss registers of 3 targets", 2, 4, 3, false, count) && ok;
+  ok = Run<Vrt_cache_merge3>("3-beat lines, 2 miss registers of 5 targets", 3, 2, 5, false, count) && ok;
+  ok = Run<Vrt_cache_missport>("2-beat lines, 4 miss registers of 3 targets, miss-only port", 2, 4, 3, true, count) &&
+       ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

@@ -36,13 +36,23 @@ bool Run(uint64_t vectors) {
   Rng rng(3);
   const char* const names[] = {"trav_busy", "list_busy",  "isect_busy",         "node_hit", "node_miss", "list_hit",
                                "list_miss", "tri_hit",    "tri_miss",           "stall_mem", "stall_stack",
-                               "stall_backpressure",      "ray_in",             "ray_out",  "overflow",  "trav_leaf"};
-  std::array<int, 16> bit{};
-  for (int i = 0; i < 16; ++i) {
+                               "stall_backpressure",      "ray_in",             "ray_out",  "overflow",  "trav_leaf",
+                               "busy", "node_wait", "list_wait", "tri_wait", "node_wait_inflight",
+                               "list_wait_inflight", "tri_wait_inflight", "node_wait_mshr", "list_wait_mshr",
+                               "tri_wait_mshr", "node_merge", "list_merge", "tri_merge", "trav_stall",
+                               "isect_stall", "hit_stall"};
+  constexpr int kNames = 32;
+  static_assert(sizeof(names) / sizeof(names[0]) == kNames);
+  if (sim::kPerfBits != kNames) {
+    std::printf("rt_perf_events: FAIL: perf_t has %d fields, the bench checks %d\n", sim::kPerfBits, kNames);
+    return false;
+  }
+  std::array<int, kNames> bit{};
+  for (int i = 0; i < kNames; ++i) {
     bit[i] = BitOf(names[i]);
     if (bit[i] < 0) return false;
   }
-  std::array<uint64_t, 16> ones{};
+  std::array<uint64_t, kNames> ones{};
   double p = 0.1;
   for (uint64_t n = 0; n < vectors; ++n) {
     if (n % 1000 == 0) p = std::array<double, 3>{0.03, 0.1, 0.5}[rng.Below(3)];
@@ -50,12 +60,15 @@ bool Run(uint64_t vectors) {
     const bool busy = rng.Chance(0.8), ray_in = b(), clip = b(), node = b(), node_leaf = rng.Chance(0.5);
     const bool node_stall = b(), trav = b(), overflow = b(), list_req = b(), list_entry = b(), isect_in = b();
     const bool isect_stall = b(), isect_out = b(), out = b(), hit_valid = rng.Chance(0.5), hit_ready = b();
-    const bool mem_wait = rng.Chance(0.5);
-    unsigned exit_req = 0, cache_hit = 0, cache_miss = 0;
+    const bool mem_wait = rng.Chance(0.5), node_wait = b(), list_wait = b(), tri_wait = b();
+    unsigned exit_req = 0, cache_hit = 0, cache_miss = 0, merge = 0, wait_inflight = 0, wait_mshr = 0;
     for (unsigned t = 0; t < kThreads; ++t) exit_req |= static_cast<unsigned>(rng.Chance(p)) << t;
     for (unsigned c = 0; c < 3; ++c) {
       cache_hit |= static_cast<unsigned>(b()) << c;
       cache_miss |= static_cast<unsigned>(b()) << c;
+      merge |= static_cast<unsigned>(b()) << c;
+      wait_inflight |= static_cast<unsigned>(b()) << c;
+      wait_mshr |= static_cast<unsigned>(b()) << c;
     }
     // The exit taken: as rt_core's arbiter, one of the requesters; or any thread.
     bool exit = exit_req != 0 && rng.Chance(0.9);
@@ -86,13 +99,19 @@ bool Run(uint64_t vectors) {
     dut.cache_hit_i = cache_hit;
     dut.cache_miss_i = cache_miss;
     dut.mem_wait_i = mem_wait;
+    dut.node_wait_i = node_wait;
+    dut.list_wait_i = list_wait;
+    dut.tri_wait_i = tri_wait;
+    dut.cache_merge_i = merge;
+    dut.cache_wait_inflight_i = wait_inflight;
+    dut.cache_wait_mshr_i = wait_mshr;
     sim.Settle();
 
     const bool trav_in = node && !node_leaf, list_busy = list_req || list_entry;
     const bool progress =
         trav_in || list_busy || isect_in || exit || out || ray_in || clip || trav || isect_out;
     const unsigned taken = exit ? 1u << exit_idx : 0;
-    const std::array<bool, 16> want = {trav_in,
+    const std::array<bool, kNames> want = {trav_in,
                                        list_busy,
                                        isect_in,
                                        (cache_hit & 1) != 0,
@@ -107,8 +126,24 @@ bool Run(uint64_t vectors) {
                                        ray_in,
                                        hit_valid && hit_ready,
                                        overflow,
-                                       node && node_leaf};
-    for (int i = 0; i < 16; ++i) {
+                                       node && node_leaf,
+                                       busy,
+                                       node_wait,
+                                       list_wait,
+                                       tri_wait,
+                                       (wait_inflight & 1) != 0,
+                                       (wait_inflight & 2) != 0,
+                                       (wait_inflight & 4) != 0,
+                                       (wait_mshr & 1) != 0,
+                                       (wait_mshr & 2) != 0,
+                                       (wait_mshr & 4) != 0,
+                                       (merge & 1) != 0,
+                                       (merge & 2) != 0,
+                                       (merge & 4) != 0,
+                                       node_stall,
+                                       isect_stall,
+                                       hit_valid && !hit_ready};
+    for (int i = 0; i < kNames; ++i) {
       const bool got = (dut.perf_o >> bit[i] & 1) != 0;
       if (got != want[i]) {
         std::printf("rt_perf_events: FAIL at vector %llu: %s (bit %d) is %d, the model says %d (perf_o 0x%04x)\n",
@@ -118,7 +153,7 @@ bool Run(uint64_t vectors) {
       ones[i] += want[i];
     }
   }
-  for (int i = 0; i < 16; ++i) {
+  for (int i = 0; i < kNames; ++i) {
     if (ones[i] == 0 || ones[i] == vectors) {
       std::printf("rt_perf_events: FAIL: %s was always %d\n", names[i], ones[i] != 0);
       return false;

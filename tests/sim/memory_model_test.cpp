@@ -31,7 +31,7 @@ std::vector<uint64_t> AnswerCycles(const MemoryConfig& config, int count) {
   MemoryResponse r;
   for (uint64_t c = 0; when.size() < static_cast<size_t>(count) && c < 100000; ++c) {
     if (m.Respond(c, &r)) {
-      EXPECT_EQ(r.tag, static_cast<uint8_t>(when.size()));
+      EXPECT_EQ(r.tag, static_cast<uint16_t>(when.size()));
       when.push_back(c);
     }
   }

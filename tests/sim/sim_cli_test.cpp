@@ -98,6 +98,31 @@ struct SceneCase {
 
 void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.scene << " " << c.format; }
 
+// The stall breakdown of a report (docs/simulator.md, "What the report says
+// about the core") is made of shares that must add up.
+void ExpectConsistentBreakdown(const nlohmann::json& j) {
+  double states = 0;
+  for (const auto& [name, share] : j["thread_states"].items()) {
+    EXPECT_GE(share.get<double>(), 0.0) << name;
+    states += share.get<double>();
+  }
+  EXPECT_NEAR(states, 1.0, 1e-9);
+  for (const char* cache : {"node", "list", "tri"}) {
+    const auto& w = j["waits"][cache];
+    EXPECT_LE(w["wait_in_flight"].get<double>() + w["wait_no_mshr"].get<double>(), w["wait"].get<double>() + 1e-12)
+        << cache;
+    EXPECT_LE(w["wait"].get<double>(), 1.0) << cache;
+    EXPECT_LE(w["merged_misses"].get<uint64_t>(), j["perf_counts"][std::string(cache) + "_miss"].get<uint64_t>())
+        << cache;
+  }
+  for (const char* unit : {"traversal", "intersection"}) {
+    EXPECT_GE(j["unit_starve"][unit].get<double>(), 0.0) << unit;
+    EXPECT_LE(j["unit_starve"][unit].get<double>(), j["busy"].get<double>()) << unit;
+  }
+  EXPECT_NEAR(j["memory_bound_cycles_per_ray"].get<double>(),
+              j["memory"]["bytes_per_ray"].get<double>() / j["memory"]["bytes_per_cycle"].get<double>(), 1e-9);
+}
+
 class SimMatchesRender : public SimCli, public ::testing::WithParamInterface<SceneCase> {};
 
 TEST_P(SimMatchesRender, HitBuffersAreIdentical) {
@@ -123,6 +148,7 @@ TEST_P(SimMatchesRender, HitBuffersAreIdentical) {
   EXPECT_EQ(j["precision"]["rays"].get<uint64_t>(), rays);
   // The core cannot beat one node fetch or one test per cycle.
   EXPECT_GE(j["cycles_per_ray"].get<double>(), j["bound_cycles_per_ray"].get<double>());
+  ExpectConsistentBreakdown(j);
 }
 
 std::string CaseName(const ::testing::TestParamInfo<SceneCase>& info) {
@@ -146,6 +172,18 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"gen:gears:1500", "fp32"}, SceneCase{"gen:gears:1500", "fp24"},
                       SceneCase{"gen:gears:1500", "bf16"}, SceneCase{"gen:gears:1500", "fp16"}),
     CaseName);
+
+// Coherent primary rays ask for the same node lines at once: the node cache
+// merges those misses into one fetch (rtl/rt_cache.sv, CacheTargets), and
+// the report counts them.
+TEST_F(SimCli, CoherentRaysMergeNodeMisses) {
+  const RunResult s = RunKdrt("sim gen:balls:800 --res 32x32 -q -o " + Path("sim.png") + " --json " + Path("sim.json"));
+  ASSERT_EQ(s.exit_code, 0) << s.output;
+  const nlohmann::json j = ReadJson(Path("sim.json"));
+  EXPECT_EQ(j["model"]["CacheTargets"].get<int>(), 8);
+  EXPECT_GT(j["waits"]["node"]["merged_misses"].get<uint64_t>(), 0u);
+  ExpectConsistentBreakdown(j);
+}
 
 // Rays aimed at the vertices and edges of a closed mesh, through a ray file.
 TEST_F(SimCli, RayFileMatchesRender) {
