@@ -17,10 +17,9 @@
 // Hits and completed misses have a response register each, so a hit is
 // taken while a miss is being answered; the port shows a completed miss
 // first. A hit stalls (req_ready_o low) while its register is full. A miss
-// stalls when it would join a
-// register that is full or already answering (wait_inflight_o), or needs a
-// register and none is free (wait_mshr_o). Data is never stale: the cache
-// is read-only.
+// stalls when it would join a register that is full or already answering
+// (wait_inflight_o), or needs a register and none is free (wait_mshr_o).
+// Data is never stale: the cache is read-only.
 //
 // With MissPort = 1 a second request port takes misses only: a request there
 // that misses is taken (it joins or gets a miss register) in a cycle in which

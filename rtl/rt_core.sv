@@ -92,6 +92,11 @@ module rt_core #(
   localparam int unsigned FirstBits = kdrt_pkg::img_first_bits(W);
   localparam int unsigned TriBeats = kdrt_pkg::img_tri_beats(W);
 
+  // Thread idx as a one-hot vector, or none.
+  function automatic logic [Threads-1:0] onehot(input logic en, input logic [ThW-1:0] idx);
+    onehot = en ? Threads'(1) << idx : '0;
+  endfunction
+
   // ------------------------------------------------------------ thread table
   logic [RayIdWidth-1:0]   ray_id_q [Threads];
   logic [3*W-1:0]          o_q [Threads], d_q [Threads], inv_q [Threads];
@@ -155,7 +160,7 @@ module rt_core #(
   // its node misses, its fetch starts now instead of taking a cycle of the
   // first port later.
   logic [Threads-1:0] is_fetch2;
-  assign is_fetch2 = is_fetch & ~(fetch_valid ? Threads'(1) << fetch_idx : '0);
+  assign is_fetch2 = is_fetch & ~onehot(fetch_valid, fetch_idx);
   rt_rr_arb #(.N(Threads)) u_fetch2_arb (
     .clk_i, .rst_ni, .req_i(is_fetch2), .ack_i(1'b1), .valid_o(fetch2_valid), .idx_o(fetch2_idx)
   );
@@ -321,7 +326,8 @@ module rt_core #(
     .state_o(thread_state_o),
     .alloc_idx_o(alloc_idx), .alloc_i(ray_fire), .setup_i(setup_fire), .setup_idx_i(setup_tag),
     .clip_i(clip_valid), .clip_idx_i(clip_tag), .clip_miss_i(clip_miss), .fetch_i(fetch_fire),
-    .fetch_idx_i(fetch_idx), .fetch2_i(fetch2_fire), .fetch2_idx_i(fetch2_idx), .node_i(node_fire), .node_idx_i(node_tag), .node_leaf_i(node_is_leaf),
+    .fetch_idx_i(fetch_idx), .fetch2_i(fetch2_fire), .fetch2_idx_i(fetch2_idx), .node_i(node_fire),
+    .node_idx_i(node_tag), .node_leaf_i(node_is_leaf),
     .node_job_i(job_push), .node_tests_i(CountW'(node_count)), .trav_i(trav_valid), .trav_idx_i(trav_tag),
     .trav_overflow_i(trav_overflow), .issue_i(tri_fire), .issue_idx_i(tri_tag), .retire_i(isect_valid),
     .retire_idx_i(isect_tag), .exit_i(exit_valid), .exit_idx_i(exit_idx), .exit_done_i(exit_done),
@@ -330,9 +336,6 @@ module rt_core #(
 
   // Each event names one thread (one-hot here), which is always in the
   // event's state (rt_thread_fsm checks), so one thread's events never collide.
-  function automatic logic [Threads-1:0] onehot(input logic en, input logic [ThW-1:0] idx);
-    onehot = en ? Threads'(1) << idx : '0;
-  endfunction
   wire [Threads-1:0] on_alloc = onehot(ray_fire, alloc_idx), on_setup = onehot(setup_fire, setup_tag),
                      on_clip = onehot(clip_valid, clip_tag), on_node = onehot(node_fire, node_tag),
                      on_trav = onehot(trav_valid, trav_tag), on_exit = onehot(exit_valid, exit_idx);

@@ -90,7 +90,8 @@ module rt_mem_system #(
   logic [127:0]         mem_resp_data;
 
   rt_cache #(.Lines(NodeCacheLines), .LineBeats(NodeLineBeats), .KeyWidth(AddrWidth - NodeOffW),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets), .MissPort(1'b1)) u_node_cache (
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets),
+             .MissPort(1'b1)) u_node_cache (
     .clk_i, .rst_ni,
     .req_valid_i(node_req_valid_i), .req_ready_o(node_req_ready_o),
     .req_key_i(node_req_addr_i[AddrWidth-1:NodeOffW]),

@@ -63,7 +63,8 @@ int RunSim(SimArgs args) {
                 " bytes)\n",
                 req.stack_depth, req.node_idx_bits, req.tri_idx_bits, req.addr_bits, req.image_bytes);
     std::printf("model          %s (%s)\n", choice.config.Key().c_str(), choice.prebuilt ? "prebuilt" : "scene-sized");
-    std::printf("executable     %s (%s)\n", loc.path.c_str(), loc.built ? "built" : loc.stale ? "out of date: sources changed, rebuilt on use" : "not built yet");
+    const char* state = loc.built ? "built" : loc.stale ? "out of date: sources changed, rebuilt on use" : "not built yet";
+    std::printf("executable     %s (%s)\n", loc.path.c_str(), state);
     return 0;
   }
   const RaySet ray_set = MakeRays(p.scene, args.rays, args.camera, args.res);
