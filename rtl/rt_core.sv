@@ -59,6 +59,9 @@ module rt_core #(
   output logic                  ray_ready_o,
   input  logic [RayIdWidth-1:0] ray_id_i,
   input  logic [255:0]          ray_i,
+  // an any-hit query (shadow ray): the ray ends after the first leaf that
+  // gives it a hit, with that leaf's closest hit (docs/core-interface.md)
+  input  logic                  ray_any_i,
   // hits out
   output logic                  hit_valid_o,
   input  logic                  hit_ready_i,
@@ -106,6 +109,7 @@ module rt_core #(
   logic signed [KW-1:0]    t_scale_q [Threads];  // k: world t = framed t * 2^k
   logic [NodeIdxWidth-1:0] node_q [Threads];
   logic [Threads-1:0]      ovf_q;              // the stack overflowed
+  logic [Threads-1:0]      any_q;              // an any-hit query
 
   // The threads in FREE, FETCH, EXIT and DONE, and the ones chosen: the lowest
   // free thread takes the next ray, arbiters pick a leaf exit and a hit out.
@@ -228,7 +232,7 @@ module rt_core #(
     .clk_i, .rst_ni, .clear_i(setup_fire), .clear_idx_i(setup_tag),
     .push_i(trav_push), .push_idx_i(trav_tag), .push_node_i(trav_second), .push_t0_i(trav_ts_lo),
     .push_t1_i(trav_t1), .push_full_o(stack_full), .req_i(is_exit), .exit_valid_o(exit_valid),
-    .exit_idx_o(exit_idx), .exit_hit_i(exit_hit), .exit_best_t_i(exit_best_t),
+    .exit_idx_o(exit_idx), .exit_any_i(any_q[exit_idx]), .exit_hit_i(exit_hit), .exit_best_t_i(exit_best_t),
     .exit_t1_i(t1_q[exit_idx]), .exit_done_o(exit_done), .pop_node_o(pop_node), .pop_t0_o(pop_t0),
     .pop_t1_o(pop_t1)
   );
@@ -342,7 +346,7 @@ module rt_core #(
 
   always_ff @(posedge clk_i) begin
     for (int t = 0; t < Threads; t++) begin
-      if (on_alloc[t]) ray_id_q[t] <= ray_id_i;
+      if (on_alloc[t]) {ray_id_q[t], any_q[t]} <= {ray_id_i, ray_any_i};
       if (on_setup[t]) begin
         {o_q[t], d_q[t], inv_q[t], tmin_q[t]} <= {setup_o, setup_d, setup_inv, setup_tmin};
         t_scale_q[t] <= setup_t_scale;
@@ -366,8 +370,8 @@ module rt_core #(
   /* verilator lint_on UNUSEDSIGNAL */
 
   // The ray-in stream's rule (the units check the other streams).
-  rt_stream_check #(.Width(RayIdWidth + 256), .Name("rt_core ray in")) u_ray_check (
-    .clk_i, .rst_ni, .valid_i(ray_valid_i), .ready_i(ray_ready_o), .payload_i({ray_id_i, ray_i})
+  rt_stream_check #(.Width(RayIdWidth + 257), .Name("rt_core ray in")) u_ray_check (
+    .clk_i, .rst_ni, .valid_i(ray_valid_i), .ready_i(ray_ready_o), .payload_i({ray_id_i, ray_any_i, ray_i})
   );
 
   // ------------------------------------------------------------ performance events

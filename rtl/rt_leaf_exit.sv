@@ -5,7 +5,7 @@
 // takes one a cycle (no backpressure). For the chosen thread exit_idx_o the
 // caller gives its closest hit and interval end, and exit_done_o is the rule
 // of TraceRay after a leaf (sw/trace/traversal.h):
-//   if hit and best.t <= t1: done; if the stack is empty: done;
+//   if hit and (any-hit query or best.t <= t1): done; if the stack is empty: done;
 //   pop; if hit and best.t < popped t0: done
 // all in one cycle: the top entry is looked at before the pop, and the stack
 // is popped only when the thread goes on (exit_done_o low), to the popped
@@ -41,7 +41,9 @@ module rt_leaf_exit #(
   input  logic [Threads-1:0]      req_i,
   output logic                    exit_valid_o,
   output logic [ThW-1:0]          exit_idx_o,
-  // exit_idx_o's closest hit (hit, t) and interval end t1
+  // exit_idx_o's closest hit (hit, t), interval end t1, and whether its ray
+  // is an any-hit query (it ends at the first leaf with a hit)
+  input  logic                    exit_any_i,
   input  logic                    exit_hit_i,
   input  logic [W-1:0]            exit_best_t_i,
   input  logic [W-1:0]            exit_t1_i,
@@ -74,7 +76,7 @@ module rt_leaf_exit #(
     .valid_o(), .lt_o(best_lt_pop), .le_o(), .eq_o(), .min_o(), .max_o()
   );
 
-  assign exit_done_o = (exit_hit_i && best_le_t1) || stack_empty || (exit_hit_i && best_lt_pop);
+  assign exit_done_o = (exit_hit_i && (exit_any_i || best_le_t1)) || stack_empty || (exit_hit_i && best_lt_pop);
 
 endmodule
 

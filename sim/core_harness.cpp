@@ -70,6 +70,7 @@ void CoreHarness::Configure() {
   static_assert(kMaxFrameScaleLog2 <= 255, "the frame scale must fit rt_core's 9-bit frame_scale_i");
   top_.frame_scale_i = static_cast<uint32_t>(h.frame_scale_log2) & 0x1FFu;
   top_.ray_valid_i = 0;
+  top_.ray_any_i = 0;
   top_.hit_ready_i = 1;
   top_.mem_req_ready_i = 1;
   top_.mem_resp_valid_i = 0;
@@ -82,6 +83,7 @@ void CoreHarness::BeginCycle(uint64_t cycle) {
                                fp::BitsOf(r.d.y), fp::BitsOf(r.d.z), fp::BitsOf(r.tmin), fp::BitsOf(r.tmax)};
     SetWide(top_.ray_i.data(), 8, words);
     top_.ray_id_i = static_cast<uint32_t>(next_ray_);
+    top_.ray_any_i = options_.reference.query == Query::kAny;
     top_.ray_valid_i = 1;
     if (options_.trace_ray >= 0 && static_cast<int64_t>(next_ray_) == options_.trace_ray) dump_wanted_ = true;
   } else {

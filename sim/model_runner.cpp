@@ -163,7 +163,8 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
 }
 
 ModelRun RunModel(const ModelLocation& loc, const CoreConfig& config, const std::vector<uint8_t>& image,
-                  const std::vector<Ray>& rays, const RunOptions& run, const std::string& trace_path) {
+                  const std::vector<Ray>& rays, const RunOptions& run, const std::string& trace_path,
+                  Query query) {
   TempDir dir;
   const std::string image_path = dir.File("image.bin"), rays_path = dir.File("rays.bin");
   const std::string hits_path = dir.File("hits.exr"), report_path = dir.File("report.json");
@@ -172,7 +173,7 @@ ModelRun RunModel(const ModelLocation& loc, const CoreConfig& config, const std:
     f.write(reinterpret_cast<const char*>(image.data()), static_cast<std::streamsize>(image.size()));
     if (!f) throw std::runtime_error("cannot write " + image_path);
   }
-  WriteRaysFile(rays_path, rays);
+  WriteRaysFile(rays_path, rays, query);
 
   std::vector<std::string> args = {loc.path,   "--expect-model", config.Key(), "--image",     image_path,
                                    "--rays",   rays_path,        "--hits-out", hits_path,     "--report-out",
@@ -197,14 +198,14 @@ std::vector<uint8_t> CoreImage(const std::vector<uint8_t>& fp32_image, fp::Forma
 }
 
 ModelRun Simulate(const std::vector<uint8_t>& fp32_image, const std::vector<Ray>& rays, fp::Format format,
-                  RunOptions run) {
+                  RunOptions run, Query query) {
   const std::vector<uint8_t> image = CoreImage(fp32_image, format);
   const SceneRequirements req = DeriveRequirements(ImageView(image));
   const ConfigChoice choice = ChooseConfig(format, req, ConfigOverrides{}, run.mem_size, run.allow_overflow);
   const ModelLocation loc = LocateModel(choice);
   if (!loc.built) BuildModel(choice, loc);
   run.mem_size = choice.mem_size;
-  return RunModel(loc, choice.config, image, rays, run, "");
+  return RunModel(loc, choice.config, image, rays, run, "", query);
 }
 
 }  // namespace kdrt::sim

@@ -39,8 +39,10 @@ struct ModelRun {
 // directory, runs it with `run` (waveform to `trace_path`, if set), and reads
 // back its hit records and report. The model's messages go to stderr as they
 // come.
+// `query`: closest-hit or any-hit (shadow) rays, for every ray of the set.
 ModelRun RunModel(const ModelLocation& location, const CoreConfig& config, const std::vector<uint8_t>& image,
-                  const std::vector<Ray>& rays, const RunOptions& run, const std::string& trace_path);
+                  const std::vector<Ray>& rays, const RunOptions& run, const std::string& trace_path,
+                  Query query = Query::kClosest);
 
 // The memory image the RTL core of `format` reads: the fp32 image packed in
 // the format's width (docs/memory-image.md, "Packed formats"); fp32's is the
@@ -51,6 +53,6 @@ std::vector<uint8_t> CoreImage(const std::vector<uint8_t>& fp32_image, fp::Forma
 // model of `format` that covers it (built when missing), and its run on the
 // image of its format (CoreImage of the fp32 `image`).
 ModelRun Simulate(const std::vector<uint8_t>& image, const std::vector<Ray>& rays, fp::Format format,
-                  RunOptions run);
+                  RunOptions run, Query query = Query::kClosest);
 
 }  // namespace kdrt::sim

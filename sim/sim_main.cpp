@@ -79,7 +79,8 @@ int Run(const ModelArgs& args) {
   const SceneRequirements req = DeriveRequirements(image);
   const uint64_t mem_size = args.run.mem_size ? args.run.mem_size : uint64_t{1} << config[kAddrWidth];
   CheckConfigCovers(config, req, mem_size, args.run.allow_overflow);
-  const std::vector<Ray> rays = ReadRaysFile(args.rays);
+  Query query = Query::kClosest;
+  const std::vector<Ray> rays = ReadRaysFile(args.rays, &query);
   if (args.run.trace_ray >= static_cast<int64_t>(rays.size())) {
     throw InputError("--trace-ray " + std::to_string(args.run.trace_ray) + ": there are only " +
                      std::to_string(rays.size()) + " rays");
@@ -87,6 +88,7 @@ int Run(const ModelArgs& args) {
 
   TraceOptions to;
   to.format = config.Format();
+  to.query = query;
   TraceStats ts;
   std::vector<Hit> reference = TraceRays(image, rays, to, &ts);
   const int64_t corrupt = args.run.corrupt_reference;
@@ -129,6 +131,7 @@ int Run(const ModelArgs& args) {
   ri.reference_totals = ts.totals;
   ri.run = &run;
   ri.rays = rays.size();
+  ri.query = query;
   const nlohmann::json report = ReportJson(ri);
 
   OutputSet outputs;

@@ -72,6 +72,7 @@ nlohmann::json ReportJson(const ReportInputs& in) {
         {"bytes_per_ray", Ratio(in.run->mem_bytes_read, rays)},
         {"bytes_per_cycle_used", Ratio(in.run->mem_bytes_read, cycles)}}},
       {"rays", in.rays},
+      {"query", in.query == Query::kAny ? "any" : "closest"},
       {"hits", r.hit_count},
       {"overflows", r.overflows},
       {"cycles", r.cycles},
@@ -147,8 +148,10 @@ void PrintReport(const nlohmann::json& j, std::FILE* out) {
   const auto& mem = j["memory"];
   std::fprintf(out, "memory         %llu B, latency %llu cycles, %.3g B/cycle\n", u(mem["size_bytes"]),
                u(mem["latency"]), d(mem["bytes_per_cycle"]));
-  std::fprintf(out, "rays           %llu (%dx%d), %llu hits, %llu stack overflows\n", u(j["rays"]),
-               j["width"].get<int>(), j["height"].get<int>(), u(j["hits"]), u(j["overflows"]));
+  const bool any_hit = j.value("query", "closest") == "any";
+  std::fprintf(out, "rays           %llu (%dx%d%s), %llu hits, %llu stack overflows\n", u(j["rays"]),
+               j["width"].get<int>(), j["height"].get<int>(), any_hit ? ", any-hit queries" : "", u(j["hits"]),
+               u(j["overflows"]));
   std::fprintf(out, "cycles         %llu\n", u(j["cycles"]));
   std::fprintf(out, "rays per cycle %.4f\n", d(j["rays_per_cycle"]));
   std::fprintf(out, "cycles per ray %.2f (bound %.2f: max(nodes, tests) per ray, efficiency %.1f %%)\n",
@@ -192,6 +195,47 @@ void PrintReport(const nlohmann::json& j, std::FILE* out) {
                d(rp["leaves"]), d(rp["tri_tests"]));
   std::fprintf(out, "sim speed      %.3f s, %.0f cycles/s, %.0f rays/s\n", d(j["sim_seconds"]),
                d(j["sim_cycles_per_second"]), d(j["sim_rays_per_second"]));
+}
+
+nlohmann::json FrameTotals(const nlohmann::json& passes) {
+  uint64_t rays = 0, cycles = 0, bytes = 0;
+  double bound = 0;
+  for (const auto& p : passes) {
+    if (p["stats"].is_null()) continue;
+    const auto& s = p["stats"];
+    rays += s["rays"].get<uint64_t>();
+    cycles += s["cycles"].get<uint64_t>();
+    bytes += s["memory"]["bytes_read"].get<uint64_t>();
+    bound += s["bound_cycles_per_ray"].get<double>() * s["rays"].get<double>();
+  }
+  return {{"rays", rays},
+          {"cycles", cycles},
+          {"cycles_per_ray", Ratio(cycles, rays)},
+          {"bound_cycles_per_ray", Ratio(bound, rays)},
+          {"efficiency", Ratio(bound, cycles)},
+          {"bytes_per_ray", Ratio(bytes, rays)}};
+}
+
+void PrintPasses(const nlohmann::json& passes, const nlohmann::json& totals, std::FILE* out) {
+  const auto d = [](const nlohmann::json& v) { return v.get<double>(); };
+  const auto u = [](const nlohmann::json& v) { return static_cast<unsigned long long>(v.get<uint64_t>()); };
+  std::fprintf(out, "pass       query     rays     hits      cycles  cyc/ray  bound  effic.  B/ray  "
+               "node/tri cache hits\n");
+  for (const auto& p : passes) {
+    const std::string name = p["name"], query = p["query"];
+    if (p["stats"].is_null()) {
+      std::fprintf(out, "%-10s %-8s %5d\n", name.c_str(), query.c_str(), 0);
+      continue;
+    }
+    const auto& s = p["stats"];
+    std::fprintf(out, "%-10s %-8s %7llu %8llu %11llu %8.2f %6.2f %6.1f%% %6.1f  %5.1f/%5.1f %%\n", name.c_str(),
+                 query.c_str(), u(s["rays"]), u(s["hits"]), u(s["cycles"]), d(s["cycles_per_ray"]),
+                 d(s["bound_cycles_per_ray"]), 100 * d(s["efficiency"]), d(s["memory"]["bytes_per_ray"]),
+                 100 * d(s["cache_hit_rate"]["node"]), 100 * d(s["cache_hit_rate"]["tri"]));
+  }
+  std::fprintf(out, "%-10s %-8s %7llu %8s %11llu %8.2f %6.2f %6.1f%% %6.1f\n", "frame", "", u(totals["rays"]), "",
+               u(totals["cycles"]), d(totals["cycles_per_ray"]), d(totals["bound_cycles_per_ray"]),
+               100 * d(totals["efficiency"]), d(totals["bytes_per_ray"]));
 }
 
 }  // namespace kdrt::sim

@@ -24,6 +24,7 @@ struct ReportInputs {
   RayCounters reference_totals;  // TraceRays over every ray
   const RunOutcome* run = nullptr;
   uint64_t rays = 0;
+  Query query = Query::kClosest;
 };
 
 nlohmann::json ReportJson(const ReportInputs& in);
@@ -40,5 +41,13 @@ void AddScene(const SceneFacts& facts, nlohmann::json* report);
 
 // The same numbers as a table.
 void PrintReport(const nlohmann::json& report, std::FILE* out);
+
+// A shaded frame (kdrt sim --shade): `passes` as setup/shaded_frame.h's
+// PassesJson, each pass's stats a ReportJson. The frame's totals: rays,
+// cycles (the passes run one after another), cycles per ray, and the bound
+// summed over the passes.
+nlohmann::json FrameTotals(const nlohmann::json& passes);
+// One line per pass and one for the frame.
+void PrintPasses(const nlohmann::json& passes, const nlohmann::json& totals, std::FILE* out);
 
 }  // namespace kdrt::sim

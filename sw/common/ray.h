@@ -29,6 +29,12 @@ struct Hit {
   bool IsHit() const { return prim != kNoPrim; }
 };
 
+// What a ray asks for. kAny is a shadow or occlusion query: the ray ends
+// after the first leaf (in traversal order) that gives it a hit, and returns
+// that leaf's closest hit, so it answers "is anything in [tmin, tmax]?" and
+// the record is still one definite hit, the same for the model and the RTL.
+enum class Query : uint8_t { kClosest, kAny };
+
 struct RayCounters {
   uint32_t nodes = 0;      // inner and leaf nodes fetched
   uint32_t leaves = 0;     // leaf nodes fetched (including empty ones)

@@ -41,12 +41,23 @@ class NffReader {
         scene_.background = ParseVec3(fields_, 1, Pos(), "background colour");
       } else if (key == "l") {
         if (fields_.size() != 4 && fields_.size() != 7) ExpectFields(4, "or 7");
-        for (size_t i = 1; i < fields_.size(); ++i) ParseFloat(fields_[i], Pos(), "light");
+        Light light;
+        light.position = ParseVec3(fields_, 1, Pos(), "light position");
+        if (fields_.size() == 7) {
+          light.color = ParseVec3(fields_, 4, Pos(), "light colour");
+          light.has_color = true;
+        }
+        scene_.lights.push_back(light);
       } else if (key == "f") {
         ExpectFields(9);
         glm::vec3 rgb = ParseVec3(fields_, 1, Pos(), "fill colour");
-        for (size_t i = 4; i < 9; ++i) ParseFloat(fields_[i], Pos(), "fill parameter");
-        builder_.SetColor(rgb);
+        Finish finish;
+        finish.kd = ParseFloat(fields_[4], Pos(), "fill Kd");
+        finish.ks = ParseFloat(fields_[5], Pos(), "fill Ks");
+        finish.shine = ParseFloat(fields_[6], Pos(), "fill Shine");
+        for (size_t i = 7; i < 9; ++i) ParseFloat(fields_[i], Pos(), "fill parameter");
+        if (finish.kd < 0 || finish.ks < 0 || finish.shine < 0) Fail("fill Kd, Ks and Shine must not be negative");
+        builder_.SetColor(rgb, finish);
       } else if (key == "p" || key == "pp") {
         ExpectFields(2);
         ReadPolygon(key == "pp");

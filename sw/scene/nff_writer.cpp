@@ -37,6 +37,9 @@ void CheckWritable(const Scene& scene, const std::string& path) {
   for (const glm::vec3& c : scene.colors) {
     if (!Finite(c)) throw InputError(path, 0, "colour with a NaN or Inf component");
   }
+  for (const Light& l : scene.lights) {
+    if (!Finite(l.position) || !Finite(l.color)) throw InputError(path, 0, "light with a NaN or Inf component");
+  }
   if (!Finite(scene.background)) throw InputError(path, 0, "background is NaN or Inf");
 }
 
@@ -112,15 +115,26 @@ void WriteNff(const Scene& scene, const std::string& path) {
                  c.height);
   }
   PutVec(f, "b", scene.background);
-  bool have_color = false;
-  glm::vec3 current(0.0f);
+  for (const Light& l : scene.lights) {
+    std::fprintf(f, "l %.9g %.9g %.9g", l.position.x, l.position.y, l.position.z);
+    if (l.has_color) std::fprintf(f, " %.9g %.9g %.9g", l.color.x, l.color.y, l.color.z);
+    std::fprintf(f, "\n");
+  }
+  bool have_fill = false;
+  glm::vec3 current_color(0.0f);
+  Finish current_finish;
   for (size_t i = 0; i < scene.triangles.size(); ++i) {
-    glm::vec3 color = scene.material.empty() ? glm::vec3(1.0f) : scene.colors[scene.material[i]];
+    const uint32_t m = scene.material.empty() ? 0 : scene.material[i];
+    const glm::vec3 color = scene.material.empty() ? glm::vec3(1.0f) : scene.colors[m];
+    const Finish finish = m < scene.finishes.size() ? scene.finishes[m] : Finish{};
     // Compare bit patterns so -0 and 0 are written as they are.
-    if (!have_color || std::memcmp(&color, &current, sizeof color) != 0) {
-      std::fprintf(f, "f %.9g %.9g %.9g 1 0 0 0 1\n", color.x, color.y, color.z);
-      current = color;
-      have_color = true;
+    if (!have_fill || std::memcmp(&color, &current_color, sizeof color) != 0 ||
+        std::memcmp(&finish, &current_finish, sizeof finish) != 0) {
+      std::fprintf(f, "f %.9g %.9g %.9g %.9g %.9g %.9g 0 1\n", color.x, color.y, color.z, finish.kd, finish.ks,
+                   finish.shine);
+      current_color = color;
+      current_finish = finish;
+      have_fill = true;
     }
     const Triangle& t = scene.triangles[i];
     std::fprintf(f, "p 3\n%.9g %.9g %.9g\n%.9g %.9g %.9g\n%.9g %.9g %.9g\n", t.v0.x, t.v0.y,

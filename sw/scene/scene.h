@@ -33,10 +33,29 @@ struct Triangle {
   glm::vec3 v0, v1, v2;
 };
 
+// The rest of an NFF `f` (fill) line: diffuse and specular weights and the
+// Phong exponent (transmission and refraction are read and not used).
+// Generators and OBJ/PLY/OFF files get the default.
+struct Finish {
+  float kd = 0.8f;
+  float ks = 0.2f;
+  float shine = 20.0f;
+};
+
+// An NFF `l` point light; without a colour, every light of the scene gets
+// white / sqrt(number of lights), the SPD convention.
+struct Light {
+  glm::vec3 position{0, 0, 0};
+  glm::vec3 color{1, 1, 1};
+  bool has_color = false;
+};
+
 struct Scene {
   std::vector<Triangle> triangles;  // primitive id = index, file order
-  std::vector<uint32_t> material;   // per triangle: index into colors
+  std::vector<uint32_t> material;   // per triangle: index into colors (and finishes)
   std::vector<glm::vec3> colors;    // NFF `f` surface colours (default white)
+  std::vector<Finish> finishes;     // NFF `f` finish, one per colour
+  std::vector<Light> lights;        // NFF `l` lines, in file order
   std::optional<Camera> camera;     // from the file's `v` block, if any
   glm::vec3 background{0, 0, 0};
   std::string source;               // file name or generator description

@@ -14,12 +14,14 @@ uint32_t Bits(float f) {
 
 }  // namespace
 
-void SceneBuilder::SetColor(const glm::vec3& rgb) {
-  if (material_valid_ && Bits(rgb.x) == Bits(color_.x) && Bits(rgb.y) == Bits(color_.y) &&
-      Bits(rgb.z) == Bits(color_.z)) {
-    return;
-  }
+SceneBuilder::Key SceneBuilder::KeyOf(const glm::vec3& rgb, const Finish& f) const {
+  return Key{Bits(rgb.x), Bits(rgb.y), Bits(rgb.z), Bits(f.kd), Bits(f.ks), Bits(f.shine)};
+}
+
+void SceneBuilder::SetColor(const glm::vec3& rgb, const Finish& finish) {
+  if (material_valid_ && KeyOf(rgb, finish) == KeyOf(color_, finish_)) return;
   color_ = rgb;
+  finish_ = finish;
   material_valid_ = false;
 }
 
@@ -28,16 +30,16 @@ uint32_t SceneBuilder::CurrentMaterial() {
   // The table may already hold colours (e.g. a scene being extended), so
   // index it lazily the first time.
   if (index_.empty()) {
+    scene_->finishes.resize(scene_->colors.size());
     for (size_t i = 0; i < scene_->colors.size(); ++i) {
-      const glm::vec3& c = scene_->colors[i];
-      index_.emplace(std::make_tuple(Bits(c.x), Bits(c.y), Bits(c.z)), static_cast<uint32_t>(i));
+      index_.emplace(KeyOf(scene_->colors[i], scene_->finishes[i]), static_cast<uint32_t>(i));
     }
   }
-  auto key = std::make_tuple(Bits(color_.x), Bits(color_.y), Bits(color_.z));
-  auto it = index_.find(key);
+  auto it = index_.find(KeyOf(color_, finish_));
   if (it == index_.end()) {
-    it = index_.emplace(key, static_cast<uint32_t>(scene_->colors.size())).first;
+    it = index_.emplace(KeyOf(color_, finish_), static_cast<uint32_t>(scene_->colors.size())).first;
     scene_->colors.push_back(color_);
+    scene_->finishes.push_back(finish_);
   }
   material_ = it->second;
   material_valid_ = true;

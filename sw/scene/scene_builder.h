@@ -17,8 +17,9 @@ class SceneBuilder {
  public:
   explicit SceneBuilder(Scene* scene) : scene_(scene) {}
 
-  // Colour for the triangles added from now on (white until the first call).
-  void SetColor(const glm::vec3& rgb);
+  // Colour (and finish) for the triangles added from now on (white and the
+  // default Finish until the first call).
+  void SetColor(const glm::vec3& rgb, const Finish& finish = Finish{});
 
   void AddTriangle(const glm::vec3& v0, const glm::vec3& v1, const glm::vec3& v2);
 
@@ -33,10 +34,13 @@ class SceneBuilder {
 
   Scene* scene_;
   glm::vec3 color_{1.0f, 1.0f, 1.0f};
+  Finish finish_;
   bool material_valid_ = false;
   uint32_t material_ = 0;
   // Keyed on the bit patterns, so -0 and 0 stay distinct and lookups are exact.
-  std::map<std::tuple<uint32_t, uint32_t, uint32_t>, uint32_t> index_;
+  using Key = std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t>;
+  Key KeyOf(const glm::vec3& rgb, const Finish& f) const;
+  std::map<Key, uint32_t> index_;
 };
 
 }  // namespace kdrt

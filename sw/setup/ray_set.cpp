@@ -40,7 +40,7 @@ Camera ParseCamera(const std::string& text, const Camera& base) {
 RaySet MakeRays(const Scene& scene, const std::string& rays_file, const std::string& camera, const std::string& res) {
   RaySet set;
   if (!rays_file.empty()) {
-    set.rays = ReadRaysFile(rays_file);
+    set.rays = ReadRaysFile(rays_file, &set.query);
     set.width = static_cast<int>(set.rays.size());
     return set;
   }

@@ -16,6 +16,7 @@ struct RaySet {
   std::vector<Ray> rays;
   int width = 0;
   int height = 1;
+  Query query = Query::kClosest;  // a ray file's (shadow rays: kAny)
 };
 
 // Throws InputError on a malformed --res or --camera, or a bad ray file.

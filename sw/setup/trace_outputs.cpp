@@ -30,9 +30,9 @@ void AddJsonOutput(OutputSet& outputs, const std::string& path, const nlohmann::
 
 void AddTraceOutputs(OutputSet& outputs, const Scene& scene, const RaySet& rays, const std::vector<Hit>& hits,
                      const std::string& image_path, const std::string& hits_path, const std::string& json_path,
-                     const nlohmann::json& stats) {
+                     const nlohmann::json& stats, const std::vector<float>* shaded) {
   if (!image_path.empty()) {
-    const std::vector<float> rgb = ShadeEyeLight(scene, rays.rays, hits);
+    const std::vector<float> rgb = shaded ? *shaded : ShadeEyeLight(scene, rays.rays, hits);
     outputs.Add(image_path, [&](const std::string& tmp) { WriteRgbImage(tmp, rays.width, rays.height, rgb); });
   }
   if (!hits_path.empty()) {

@@ -22,9 +22,10 @@ void AddJsonOutput(OutputSet& outputs, const std::string& path, const nlohmann::
 
 // Queues the image (if image_path is set), the hit buffer and the JSON stats
 // (if their paths are set) on `outputs`; nothing is renamed into place until
-// outputs.Commit().
+// outputs.Commit(). The image is `shaded` if given (trace/shading.h), else
+// eye-light shading of the hits.
 void AddTraceOutputs(OutputSet& outputs, const Scene& scene, const RaySet& rays, const std::vector<Hit>& hits,
                      const std::string& image_path, const std::string& hits_path, const std::string& json_path,
-                     const nlohmann::json& stats);
+                     const nlohmann::json& stats, const std::vector<float>* shaded = nullptr);
 
 }  // namespace kdrt

@@ -11,6 +11,7 @@
 #include "setup/precision_check.h"
 #include "setup/prepared_scene.h"
 #include "setup/ray_set.h"
+#include "setup/shaded_frame.h"
 #include "setup/trace_outputs.h"
 #include "tools/scene_options.h"
 #include "trace/images.h"
@@ -35,7 +36,17 @@ struct RenderArgs {
   int threads = 0;
   bool quiet = false;
   bool strict = false;
+  ShadingArgs shading;
 };
+
+nlohmann::json PassStats(const TraceStats& ts) {
+  const double n = static_cast<double>(ts.rays);
+  return {{"rays", ts.rays},
+          {"hits", ts.hits},
+          {"trace_seconds", ts.seconds},
+          {"per_ray",
+           {{"nodes", ts.totals.nodes / n}, {"leaves", ts.totals.leaves / n}, {"tri_tests", ts.totals.tri_tests / n}}}};
+}
 
 int Run(const RenderArgs& args) {
   const fp::Format format = fp::ParseFormat(args.format);
@@ -52,6 +63,7 @@ int Run(const RenderArgs& args) {
   const ImageView traced = layout.IsFp32() ? image : ImageView(packed);
 
   const RaySet ray_set = MakeRays(p.scene, args.rays, args.camera, args.res);
+  CheckShadingArgs(args.shading, ray_set);
   const std::vector<Ray>& rays = ray_set.rays;
   const int width = ray_set.width, height = ray_set.height;
 
@@ -59,6 +71,7 @@ int Run(const RenderArgs& args) {
   to.format = format;
   to.isect = ParseIsectMethod(args.isect);
   to.threads = args.threads;
+  to.query = ray_set.query;
   to.progress = !args.quiet && isatty(STDERR_FILENO) && rays.size() >= 1000000;
   const PrecisionCheck check = CheckPrecision(image, rays, to.format, args.strict, args.threads);
   TraceStats ts;
@@ -90,9 +103,27 @@ int Run(const RenderArgs& args) {
       {"warnings", check.warnings},
   };
 
+  // Shading: the secondary passes, traced by the same model.
+  ShadedFrame frame;
+  if (args.shading.On()) {
+    const PassTracer trace = [&](const RayPass& pass, nlohmann::json* stats) {
+      TraceOptions po = to;
+      po.query = pass.query;
+      po.progress = false;
+      TraceStats ps;
+      std::vector<Hit> h = TraceRays(traced, pass.rays, po, &ps);
+      *stats = PassStats(ps);
+      return h;
+    };
+    frame = TraceShadedFrame(p.scene, args.shading.options, rays, hits, PassStats(ts), trace);
+    j["passes"] = PassesJson(frame.passes);
+  }
+
   OutputSet outputs;
   const std::string out = args.out.empty() ? DefaultImageName(args.scene.scene, !args.rays.empty()) : args.out;
-  AddTraceOutputs(outputs, p.scene, ray_set, hits, out, args.hits, args.json, j);
+  AddTraceOutputs(outputs, p.scene, ray_set, hits, out, args.hits, args.json, j,
+                  args.shading.On() ? &frame.rgb : nullptr);
+  if (!args.shading.write_rays.empty()) AddRayPassFiles(outputs, args.shading.write_rays, frame.passes);
   outputs.Commit();
 
   if (!args.quiet) {
@@ -107,9 +138,23 @@ int Run(const RenderArgs& args) {
     std::printf("per ray        %.2f nodes, %.2f leaves, %.2f triangle tests\n", ts.totals.nodes / n,
                 ts.totals.leaves / n, ts.totals.tri_tests / n);
     std::printf("trace time     %.3f s, %.2f Mrays/s\n", ts.seconds, ts.seconds > 0 ? n / ts.seconds * 1e-6 : 0.0);
+    for (size_t k = 1; k < frame.passes.size(); ++k) {
+      const TracedPass& tp = frame.passes[k];
+      const double pn = static_cast<double>(tp.pass.rays.size());
+      if (tp.stats.is_null()) {
+        std::printf("pass %-9s 0 rays\n", tp.pass.name.c_str());
+        continue;
+      }
+      const auto& pr = tp.stats["per_ray"];
+      std::printf("pass %-9s %zu rays (%s), %llu hits (%.1f %%), %.2f nodes, %.2f triangle tests per ray\n",
+                  tp.pass.name.c_str(), tp.pass.rays.size(), tp.pass.query == Query::kAny ? "any hit" : "closest hit",
+                  static_cast<unsigned long long>(tp.stats["hits"].get<uint64_t>()),
+                  100.0 * tp.stats["hits"].get<double>() / pn, pr["nodes"].get<double>(), pr["tri_tests"].get<double>());
+    }
     if (!out.empty()) std::printf("image          %s\n", out.c_str());
     if (!args.hits.empty()) std::printf("hit buffer     %s\n", args.hits.c_str());
     if (!args.json.empty()) std::printf("stats          %s\n", args.json.c_str());
+    if (!args.shading.write_rays.empty()) std::printf("ray sets       %s\n", args.shading.write_rays.c_str());
   }
   return 0;
 }
@@ -136,6 +181,7 @@ Runner AddRenderCommand(CLI::App& app) {
                 "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");
   cmd->add_option("--rays", args->rays, "Trace this ray file (KDRTRAYS) instead of the camera");
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
+  AddShadingOptions(*cmd, args->shading);
   cmd->add_option("--threads", args->threads, "Threads (0: all cores; results do not depend on it)");
   cmd->add_flag("-q,--quiet", args->quiet, "No summary on stdout");
   return [cmd, args]() { return cmd->parsed() ? Run(*args) : -1; };

@@ -17,6 +17,7 @@
 #include "setup/precision_check.h"
 #include "setup/prepared_scene.h"
 #include "setup/ray_set.h"
+#include "setup/shaded_frame.h"
 #include "setup/trace_outputs.h"
 #include "sim/model_runner.h"
 #include "sim/run_options.h"
@@ -41,6 +42,12 @@ struct SimArgs {
   bool quiet = false;
   bool strict = false;
   bool which_model = false;  // print the model choice and stop
+  ShadingArgs shading;
+};
+
+// A secondary pass's model run failed (its message is on stderr already).
+struct PassFailed {
+  int exit_code;
 };
 
 int RunSim(SimArgs args) {
@@ -68,6 +75,7 @@ int RunSim(SimArgs args) {
     return 0;
   }
   const RaySet ray_set = MakeRays(p.scene, args.rays, args.camera, args.res);
+  CheckShadingArgs(args.shading, ray_set);
   if (args.run.trace_ray >= static_cast<int64_t>(ray_set.rays.size())) {
     throw InputError("--trace-ray " + std::to_string(args.run.trace_ray) + ": there are only " +
                      std::to_string(ray_set.rays.size()) + " rays");
@@ -83,7 +91,8 @@ int RunSim(SimArgs args) {
   if (!args.run.trace.empty()) outputs.Add(args.run.trace, [&](const std::string& tmp) { trace_tmp = tmp; });
   args.run.mem_size = choice.mem_size;
   args.run.progress = args.run.progress || (!args.quiet && isatty(STDERR_FILENO));
-  const sim::ModelRun run = sim::RunModel(loc, choice.config, core_image, ray_set.rays, args.run, trace_tmp);
+  const sim::ModelRun run = sim::RunModel(loc, choice.config, core_image, ray_set.rays, args.run, trace_tmp,
+                                               ray_set.query);
   if (run.exit_code != 0) {
     if (!trace_tmp.empty() && std::rename(trace_tmp.c_str(), args.run.trace.c_str()) == 0) {
       std::fprintf(stderr, "kdrt sim: waveform up to the failure in %s\n", args.run.trace.c_str());
@@ -97,16 +106,44 @@ int RunSim(SimArgs args) {
                 &report);
   report["precision"] = check.requirement.Json();
   report["warnings"] = check.warnings;
+
+  // Shading: each secondary pass is one more run of the same model (the
+  // waveform and --trace-ray cover the primary pass only).
+  ShadedFrame frame;
+  if (args.shading.On()) {
+    sim::RunOptions pass_run = args.run;
+    pass_run.trace.clear();
+    pass_run.trace_ray = -1;
+    const PassTracer trace = [&](const RayPass& pass, nlohmann::json* stats) {
+      if (!args.quiet) std::fprintf(stderr, "kdrt sim: %s pass, %zu rays\n", pass.name.c_str(), pass.rays.size());
+      sim::ModelRun r = sim::RunModel(loc, choice.config, core_image, pass.rays, pass_run, "", pass.query);
+      if (r.exit_code != 0) throw PassFailed{r.exit_code};
+      *stats = std::move(r.report);
+      return std::move(r.hits);
+    };
+    try {
+      frame = TraceShadedFrame(p.scene, args.shading.options, ray_set.rays, run.hits, run.report, trace);
+    } catch (const PassFailed& f) {
+      return f.exit_code;
+    }
+    report["passes"] = PassesJson(frame.passes);
+    report["frame"] = sim::FrameTotals(report["passes"]);
+  }
+
   const std::string out = args.out.empty() ? DefaultImageName(args.scene.scene, !args.rays.empty()) : args.out;
-  AddTraceOutputs(outputs, p.scene, ray_set, run.hits, out, args.hits, args.json, report);
+  AddTraceOutputs(outputs, p.scene, ray_set, run.hits, out, args.hits, args.json, report,
+                  args.shading.On() ? &frame.rgb : nullptr);
+  if (!args.shading.write_rays.empty()) AddRayPassFiles(outputs, args.shading.write_rays, frame.passes);
   outputs.Commit();
 
   if (!args.quiet) {
     sim::PrintReport(report, stdout);
+    if (args.shading.On()) sim::PrintPasses(report["passes"], report["frame"], stdout);
     if (!out.empty()) std::printf("image          %s\n", out.c_str());
     if (!args.hits.empty()) std::printf("hit buffer     %s\n", args.hits.c_str());
     if (!args.json.empty()) std::printf("stats          %s\n", args.json.c_str());
     if (!args.run.trace.empty()) std::printf("waveform       %s\n", args.run.trace.c_str());
+    if (!args.shading.write_rays.empty()) std::printf("ray sets       %s\n", args.shading.write_rays.c_str());
   }
   return 0;
 }
@@ -128,6 +165,7 @@ Runner AddSimCommand(CLI::App& app) {
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
   sim::AddRunOptions(*cmd, args->run);
   sim::AddParamOptions(*cmd, args->overrides);
+  AddShadingOptions(*cmd, args->shading);
   cmd->add_flag("-q,--quiet", args->quiet, "No report on stdout");
   cmd->add_flag("--strict", args->strict,
                 "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");

@@ -1,5 +1,7 @@
 #include "tools/scene_options.h"
 
+#include "common/error.h"
+
 namespace kdrt::cli {
 
 void AddSceneOptions(CLI::App& cmd, SceneSpec& spec) {
@@ -21,6 +23,28 @@ void AddSceneOptions(CLI::App& cmd, SceneSpec& spec) {
   cmd.add_flag("--perfect-splits", b.perfect_splits, "Clip triangles to the node box (SAH only)");
   cmd.add_option("--sphere-segments", spec.sphere_segments,
                  "Tessellation of NFF spheres and cones (0: the loader's default)");
+}
+
+void AddShadingOptions(CLI::App& cmd, ShadingArgs& args) {
+  cmd.add_flag("--shade", args.shade,
+               "Shade with the scene's lights (NFF `l`; else one above the camera) and hard shadows: traces a "
+               "shadow ray (any-hit query) per hit and light (docs/shading.md)");
+  cmd.add_option("--ao", args.options.ao_samples, "Also N ambient-occlusion rays per hit (any-hit; implies --shade)")
+      ->check(CLI::Range(0, 1024));
+  cmd.add_flag("--bounce", args.options.bounce, "Also one diffuse bounce ray per hit (closest hit; implies --shade)");
+  cmd.add_option("--seed", args.options.seed, "Seed of the AO and bounce directions")->capture_default_str();
+  cmd.add_option("--write-rays", args.write_rays,
+                 "Write the frame's ray sets to DIR as ray files: primary.rays, shadow.rays, ao.rays, bounce.rays "
+                 "(needs --shade, --ao or --bounce)");
+}
+
+void CheckShadingArgs(const ShadingArgs& args, const RaySet& rays) {
+  if (!args.write_rays.empty() && !args.On()) {
+    throw InputError("--write-rays: the ray sets come from shading; add --shade (or --ao N, --bounce)");
+  }
+  if (args.On() && rays.query == Query::kAny) {
+    throw InputError("--shade: the ray file holds any-hit queries (shadow rays), not primary rays to shade");
+  }
 }
 
 }  // namespace kdrt::cli

@@ -13,8 +13,9 @@ namespace kdrt {
 namespace {
 
 constexpr char kRaysMagic[8] = {'K', 'D', 'R', 'T', 'R', 'A', 'Y', 'S'};
-constexpr uint32_t kRaysVersion = 1;
-constexpr size_t kRaysHeaderBytes = 16;
+constexpr uint32_t kRaysVersion = 2;
+constexpr size_t kRaysHeaderBytesV1 = 16;
+constexpr size_t kRaysHeaderBytes = 20;
 constexpr size_t kRayBytes = 32;
 
 uint32_t ReadU32(const char* p) {
@@ -25,29 +26,35 @@ uint32_t ReadU32(const char* p) {
 
 }  // namespace
 
-std::vector<Ray> ReadRaysFile(const std::string& path) {
+std::vector<Ray> ReadRaysFile(const std::string& path, Query* query) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot open ray file");
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.size() < kRaysHeaderBytes || std::memcmp(bytes.data(), kRaysMagic, 8) != 0) {
+  if (bytes.size() < kRaysHeaderBytesV1 || std::memcmp(bytes.data(), kRaysMagic, 8) != 0) {
     throw InputError(path, 0, "not a kdrt ray file (expected magic KDRTRAYS)");
   }
   const uint32_t version = ReadU32(bytes.data() + 8);
-  if (version != kRaysVersion) {
-    throw InputError(path, 0, "ray file version " + std::to_string(version) + ", expected 1");
+  if (version != 1 && version != kRaysVersion) {
+    throw InputError(path, 0, "ray file version " + std::to_string(version) + ", expected 1 or 2");
   }
+  const size_t header = version == 1 ? kRaysHeaderBytesV1 : kRaysHeaderBytes;
+  if (bytes.size() < header) throw InputError(path, 0, "ray file ends inside its header");
+  const uint32_t query_word = version == 1 ? 0 : ReadU32(bytes.data() + 16);
+  if (query_word > 1) {
+    throw InputError(path, 0, "query " + std::to_string(query_word) + ": expected 0 (closest hit) or 1 (any hit)");
+  }
+  if (query) *query = query_word == 1 ? Query::kAny : Query::kClosest;
   const uint64_t count = ReadU32(bytes.data() + 12);
-  if (bytes.size() != kRaysHeaderBytes + count * kRayBytes) {
+  if (bytes.size() != header + count * kRayBytes) {
     throw InputError(path, 0,
-                     "header says " + std::to_string(count) + " rays (" +
-                         std::to_string(kRaysHeaderBytes + count * kRayBytes) + " bytes) but the file has " +
-                         std::to_string(bytes.size()) + " bytes");
+                     "header says " + std::to_string(count) + " rays (" + std::to_string(header + count * kRayBytes) +
+                         " bytes) but the file has " + std::to_string(bytes.size()) + " bytes");
   }
   if (count == 0) throw InputError(path, 0, "ray file holds no rays");
   std::vector<Ray> rays(count);
   for (uint64_t i = 0; i < count; ++i) {
     float f[8];
-    std::memcpy(f, bytes.data() + kRaysHeaderBytes + i * kRayBytes, sizeof(f));
+    std::memcpy(f, bytes.data() + header + i * kRayBytes, sizeof(f));
     auto fail = [&](const std::string& what) {
       throw InputError(path, 0, "ray " + std::to_string(i) + ": " + what);
     };
@@ -66,14 +73,16 @@ std::vector<Ray> ReadRaysFile(const std::string& path) {
   return rays;
 }
 
-void WriteRaysFile(const std::string& path, const std::vector<Ray>& rays) {
+void WriteRaysFile(const std::string& path, const std::vector<Ray>& rays, Query query) {
   WriteFileAtomically(path, [&](const std::string& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) throw InputError(path, 0, "cannot create ray file");
     const uint32_t version = kRaysVersion, count = static_cast<uint32_t>(rays.size());
+    const uint32_t query_word = query == Query::kAny ? 1 : 0;
     out.write(kRaysMagic, 8);
     out.write(reinterpret_cast<const char*>(&version), 4);
     out.write(reinterpret_cast<const char*>(&count), 4);
+    out.write(reinterpret_cast<const char*>(&query_word), 4);
     for (const Ray& r : rays) {
       const float f[8] = {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmin, r.tmax};
       out.write(reinterpret_cast<const char*>(f), sizeof(f));

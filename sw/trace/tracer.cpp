@@ -45,7 +45,7 @@ auto WithArith(const fp::Format& format, Fn&& fn) {
 Hit TraceOne(const ImageView& image, const Ray& ray, const TraceOptions& options, RayCounters* counters,
              std::vector<uint32_t>* path) {
   return WithArith(options.format, [&](const auto& a) {
-    return ToHit(a, TraceRay(a, image, ray, options.isect, counters, path));
+    return ToHit(a, TraceRay(a, image, ray, options.isect, options.query, counters, path));
   });
 }
 
@@ -68,7 +68,7 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
         if (begin >= rays.size()) break;
         const size_t end = std::min(rays.size(), begin + kChunk);
         for (size_t i = begin; i < end; ++i) {
-          hits[i] = ToHit(a, TraceRay(a, image, rays[i], options.isect, &counters[i]));
+          hits[i] = ToHit(a, TraceRay(a, image, rays[i], options.isect, options.query, &counters[i]));
         }
         done.fetch_add(end - begin);
       }

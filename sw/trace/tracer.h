@@ -20,6 +20,7 @@ const char* IsectMethodName(IsectMethod m);
 struct TraceOptions {
   fp::Format format{8, 23};
   IsectMethod isect = IsectMethod::kWatertight;
+  Query query = Query::kClosest;  // kAny: shadow rays (common/ray.h)
   int threads = 0;  // 0: all hardware threads; results do not depend on it
   bool progress = false;  // a progress line on stderr for long runs
 };

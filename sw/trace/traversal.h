@@ -9,7 +9,8 @@
 //    was entered (the ray's tmax before any hit);
 //  - the best hit is the candidate with the smallest t, and among equal t the
 //    smallest triangle id;
-//  - after a leaf, the ray stops if it has a hit with t <= the cell's exit t;
+//  - after a leaf, the ray stops if it has a hit with t <= the cell's exit t
+//    (an any-hit query, Query::kAny: if it has a hit at all);
 //    a popped cell whose entry t lies beyond the best hit also ends the ray.
 #pragma once
 
@@ -118,7 +119,7 @@ Hit ToHit(const A& a, const TraceResult<A>& r) {
 
 // `path`, when given, receives the index of every node fetched, in order.
 template <class A>
-TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, IsectMethod isect,
+TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, IsectMethod isect, Query query,
                         RayCounters* counters = nullptr, std::vector<uint32_t>* path = nullptr) {
   using T = typename A::T;
   const FramedRay framed = ToFrame(ray, image.frame());
@@ -181,7 +182,7 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
         }
       }
     }
-    if (best.prim != kNoPrim && a.Le(best.t, t1)) return best;
+    if (best.prim != kNoPrim && (query == Query::kAny || a.Le(best.t, t1))) return best;
     if (sp == 0) return best;
     const Entry& e = stack[--sp];
     if (best.prim != kNoPrim && a.Lt(best.t, e.t0)) return best;

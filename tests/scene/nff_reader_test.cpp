@@ -71,7 +71,20 @@ TEST(NffReader, SmallFileTrianglesFanColoursCamera) {
   EXPECT_EQ(color(1), glm::vec3(1, 0, 0));
   EXPECT_EQ(color(2), glm::vec3(0, 1, 0));
   for (int i = 3; i < 6; ++i) EXPECT_EQ(color(i), glm::vec3(1, 0, 0));
-  EXPECT_EQ(s.material[0], s.material[3]);  // same colour, same entry
+  EXPECT_EQ(s.material[0], s.material[1]);
+  EXPECT_NE(s.material[0], s.material[3]);  // same colour, another finish: another entry
+  ASSERT_EQ(s.finishes.size(), s.colors.size());
+  EXPECT_EQ(s.finishes[s.material[0]].kd, 0.7f);
+  EXPECT_EQ(s.finishes[s.material[0]].ks, 0.3f);
+  EXPECT_EQ(s.finishes[s.material[0]].shine, 4.0f);
+  EXPECT_EQ(s.finishes[s.material[3]].kd, 0.5f);
+  EXPECT_EQ(s.finishes[s.material[3]].shine, 10.0f);
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.lights[0].position, glm::vec3(5, 5, 5));
+  EXPECT_FALSE(s.lights[0].has_color);
+  EXPECT_EQ(s.lights[1].position, glm::vec3(1, 2, 3));
+  EXPECT_TRUE(s.lights[1].has_color);
+  EXPECT_EQ(s.lights[1].color, glm::vec3(0.5f));
 
   EXPECT_EQ(s.background, glm::vec3(0.1f, 0.2f, 0.3f));
   ASSERT_TRUE(s.camera.has_value());

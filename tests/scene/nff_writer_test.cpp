@@ -31,6 +31,17 @@ void ExpectBitIdentical(const Scene& a, const Scene& b) {
     ASSERT_TRUE(SameBits(x.v0, y.v0) && SameBits(x.v1, y.v1) && SameBits(x.v2, y.v2))
         << "triangle " << i;
     ASSERT_TRUE(SameBits(a.colors[a.material[i]], b.colors[b.material[i]])) << "colour " << i;
+    const auto finish = [](const Scene& s, size_t k) {
+      return s.material[k] < s.finishes.size() ? s.finishes[s.material[k]] : Finish{};
+    };
+    const Finish fa = finish(a, i), fb = finish(b, i);
+    ASSERT_EQ(std::memcmp(&fa, &fb, sizeof(Finish)), 0) << "finish " << i;
+  }
+  ASSERT_EQ(a.lights.size(), b.lights.size());
+  for (size_t i = 0; i < a.lights.size(); ++i) {
+    EXPECT_TRUE(SameBits(a.lights[i].position, b.lights[i].position)) << "light " << i;
+    EXPECT_EQ(a.lights[i].has_color, b.lights[i].has_color) << "light " << i;
+    if (a.lights[i].has_color) EXPECT_TRUE(SameBits(a.lights[i].color, b.lights[i].color)) << "light " << i;
   }
   EXPECT_TRUE(SameBits(a.background, b.background));
   ASSERT_EQ(a.camera.has_value(), b.camera.has_value());
@@ -55,6 +66,13 @@ TEST(NffWriter, RoundTripOfAwkwardFloatsIsBitExact) {
     s.material.push_back(i % 3);
   }
   s.colors = {{0.1f, 0.2f, 0.3f}, {1.0f / 3.0f, -0.0f, 0.7f}, {0.1f, 0.2f, 0.3f}};
+  s.finishes = {Finish{0.7f, 0.3f, 4.0f}, Finish{1.0f / 3.0f, 0.0f, 100.0f}, Finish{0.7f, 0.3f, 4.0f}};
+  Light plain, colored;
+  plain.position = {1e-7f, -3.0f, 1.0f / 3.0f};
+  colored.position = {5.0f, 5.0f, 5.0f};
+  colored.color = {0.25f, 1.0f / 7.0f, 1.0f};
+  colored.has_color = true;
+  s.lights = {plain, colored};
   s.background = glm::vec3(0.3f, 1.0f / 7.0f, 0.0f);
   Camera cam;
   cam.from = glm::vec3(0.1f, 0.2f, 1.0f / 3.0f);

@@ -173,6 +173,76 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"gen:gears:1500", "bf16"}, SceneCase{"gen:gears:1500", "fp16"}),
     CaseName);
 
+// A shaded frame (docs/shading.md): primary, shadow (any-hit), AO (any-hit)
+// and bounce rays, each pass run on the RTL and checked ray by ray in the
+// model; the image from the RTL's hits is the reference's byte for byte,
+// and so are the ray sets built from them.
+class ShadedFrameMatchesRender : public SimCli, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(ShadedFrameMatchesRender, ImageAndRaySetsAreIdentical) {
+  const std::string common = std::string("gen:room:600 --res 20x20 --shade --ao 2 --bounce --format ") + GetParam();
+  const RunResult r = RunKdrt("render " + common + " -o " + Path("render.png") + " --json " + Path("render.json") +
+                              " --write-rays " + Path("render_rays"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const RunResult s = RunKdrt("sim " + common + " -o " + Path("sim.png") + " --json " + Path("sim.json") +
+                              " --write-rays " + Path("sim_rays"));
+  ASSERT_EQ(s.exit_code, 0) << s.output;
+  EXPECT_EQ(ReadBytes(Path("render.png")), ReadBytes(Path("sim.png")));
+  for (const char* pass : {"primary", "shadow", "ao", "bounce"}) {
+    const std::string name = std::string(pass) + ".rays";
+    ASSERT_TRUE(fs::exists(Path("render_rays/" + name))) << name;
+    EXPECT_EQ(ReadBytes(Path("render_rays/" + name)), ReadBytes(Path("sim_rays/" + name))) << name;
+  }
+  const nlohmann::json j = ReadJson(Path("sim.json"));
+  const nlohmann::json rj = ReadJson(Path("render.json"));
+  ASSERT_EQ(j["passes"].size(), 4u);
+  ASSERT_EQ(rj["passes"].size(), 4u);
+  const char* queries[] = {"closest", "any", "any", "closest"};
+  uint64_t rays = 0, cycles = 0;
+  for (size_t k = 0; k < 4; ++k) {
+    const auto& p = j["passes"][k];
+    SCOPED_TRACE(p["name"].get<std::string>());
+    EXPECT_EQ(p["name"], rj["passes"][k]["name"]);
+    EXPECT_EQ(p["query"], queries[k]);
+    EXPECT_EQ(p["stats"]["query"], queries[k]);
+    EXPECT_EQ(p["rays"], rj["passes"][k]["rays"]);
+    EXPECT_EQ(p["hits"], rj["passes"][k]["hits"]);
+    EXPECT_EQ(p["stats"]["perf_counts"]["ray_out"], p["rays"]);
+    EXPECT_GE(p["stats"]["cycles_per_ray"].get<double>(), p["stats"]["bound_cycles_per_ray"].get<double>());
+    ExpectConsistentBreakdown(p["stats"]);
+    rays += p["rays"].get<uint64_t>();
+    cycles += p["stats"]["cycles"].get<uint64_t>();
+  }
+  EXPECT_GT(j["passes"][1]["hits"].get<uint64_t>(), 0u) << "no shadow ray was blocked: the test shows little";
+  EXPECT_LT(j["passes"][1]["hits"], j["passes"][1]["rays"]) << "every shadow ray was blocked";
+  EXPECT_EQ(j["frame"]["rays"].get<uint64_t>(), rays);
+  EXPECT_EQ(j["frame"]["cycles"].get<uint64_t>(), cycles);
+
+  // A written shadow-ray file is an any-hit set for both tracers.
+  const std::string file = " --format " + std::string(GetParam()) + " --rays " + Path("render_rays/shadow.rays");
+  ASSERT_EQ(RunKdrt("render gen:room:600" + file + " -q --hits " + Path("r_shadow.exr")).exit_code, 0);
+  const RunResult fs_run = RunKdrt("sim gen:room:600" + file + " --hits " + Path("s_shadow.exr"));
+  ASSERT_EQ(fs_run.exit_code, 0) << fs_run.output;
+  EXPECT_NE(fs_run.output.find("any-hit queries"), std::string::npos) << fs_run.output;
+  ExpectSameHitBuffers(Path("r_shadow.exr"), Path("s_shadow.exr"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Presets, ShadedFrameMatchesRender, ::testing::Values("fp32", "fp24", "bf16", "fp16"));
+
+TEST_F(SimCli, ShadingOptionErrorsWriteNothing) {
+  RunResult r = RunKdrt("render gen:room:300 --res 8x8 --write-rays " + Path("rays") + " -o " + Path("x.png"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("--write-rays"), std::string::npos) << r.output;
+  ASSERT_EQ(RunKdrt("render gen:room:300 --res 8x8 --shade -q -o " + Path("a.png") + " --write-rays " + Path("rays"))
+                .exit_code,
+            0);
+  r = RunKdrt("sim gen:room:300 --shade --rays " + Path("rays/shadow.rays") + " -o " + Path("y.png"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("any-hit"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(Path("x.png")));
+  EXPECT_FALSE(fs::exists(Path("y.png")));
+}
+
 // Coherent primary rays ask for the same node lines at once: the node cache
 // merges those misses into one fetch (rtl/rt_cache.sv, CacheTargets), and
 // the report counts them.

@@ -168,7 +168,9 @@ TEST_F(Cli, BadRayFiles) {
   const float nan = NAN, inf = INFINITY;
   const std::pair<std::string, std::string> cases[] = {
       {"NOTRAYS!" + std::string(8, '\0'), "magic"},
-      {header(2, 1) + ray({0, 0, 1, 0, 0, -1, 0, inf}), "version"},
+      {header(3, 1) + ray({0, 0, 1, 0, 0, -1, 0, inf}), "version"},
+      {header(2, 1) + std::string("\x07\0\0\0", 4) + ray({0, 0, 1, 0, 0, -1, 0, inf}), "query 7"},
+      {header(2, 1) + std::string("\x01\0\0", 3), "ray file ends inside its header"},
       {header(1, 2) + ray({0, 0, 1, 0, 0, -1, 0, inf}), "bytes"},
       {header(1, 1) + ray({0, nan, 1, 0, 0, -1, 0, inf}), "ray 0: origin"},
       {header(1, 2) + ray({0, 0, 1, 0, 0, -1, 0, inf}) + ray({0, 0, 1, 0, inf, -1, 0, inf}), "ray 1: direction"},

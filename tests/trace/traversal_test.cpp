@@ -42,7 +42,7 @@ TEST(Traversal, MatchesBruteForceOnRandomRays) {
     const fp::NativeF32Arith a;
     size_t differ = 0;
     for (const Ray& ray : rays) {
-      const Hit tree = ToHit(a, TraceRay(a, image, ray, IsectMethod::kWatertight));
+      const Hit tree = ToHit(a, TraceRay(a, image, ray, IsectMethod::kWatertight, Query::kClosest));
       const Hit brute = testing::BruteForce(a, image, ray);
       differ += !testing::SameBits(tree, brute);
     }
@@ -64,8 +64,8 @@ TEST(Traversal, SoftFp32IsBitIdenticalToNative) {
   for (const Ray& ray : rays) {
     RayCounters cs, cn;
     std::vector<uint32_t> ps, pn;
-    const Hit hs = ToHit(soft, TraceRay(soft, image, ray, IsectMethod::kWatertight, &cs, &ps));
-    const Hit hn = ToHit(native, TraceRay(native, image, ray, IsectMethod::kWatertight, &cn, &pn));
+    const Hit hs = ToHit(soft, TraceRay(soft, image, ray, IsectMethod::kWatertight, Query::kClosest, &cs, &ps));
+    const Hit hn = ToHit(native, TraceRay(native, image, ray, IsectMethod::kWatertight, Query::kClosest, &cn, &pn));
     ASSERT_TRUE(testing::SameBits(hs, hn)) << "prim " << hs.prim << " vs " << hn.prim << ", t " << hs.t << " vs "
                                            << hn.t;
     ASSERT_EQ(ps, pn);
