@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cinttypes>
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
@@ -40,12 +41,30 @@ void SetWide(uint32_t* words, int count, const uint32_t* values) {
 
 }  // namespace
 
+RayQueue::RayQueue(size_t count, int cores, size_t chunk)
+    : count_(count), chunk_(chunk > 0 ? chunk : 1), cur_(cores, 0), end_(cores, 0) {}
+
+bool RayQueue::Take(int core, size_t* id) {
+  if (cur_[core] >= end_[core]) {
+    if (next_ >= count_) return false;
+    cur_[core] = next_;
+    end_[core] = std::min(count_, next_ + chunk_);
+    next_ = end_[core];
+  }
+  *id = cur_[core]++;
+  return true;
+}
+
 CoreHarness::CoreHarness(Vrt_core& top, const ImageView& image, const std::vector<Ray>& rays,
-                         const std::vector<Hit>& reference, MemoryPort& memory, const HarnessOptions& options)
-    : top_(top), image_(image), rays_(rays), reference_(reference), memory_(memory), options_(options) {
+                         const std::vector<Hit>& reference, MemoryPort& memory, const HarnessOptions& options,
+                         RayQueue* queue, int core)
+    : top_(top), image_(image), rays_(rays), reference_(reference), memory_(memory), options_(options),
+      own_queue_(queue ? nullptr : std::make_unique<RayQueue>(rays.size(), 1, rays.size())),
+      queue_(queue ? queue : own_queue_.get()), core_(core) {
   result_.hits.assign(rays.size(), Hit{});
   result_.overflow.assign(rays.size(), 0);
   received_flag_.assign(rays.size(), 0);
+  sent_flag_.assign(rays.size(), 0);
   dump_wanted_ = options_.trace_ray < 0;
   start_ = last_progress_ = std::chrono::steady_clock::now();
 }
@@ -77,15 +96,16 @@ void CoreHarness::Configure() {
 }
 
 void CoreHarness::BeginCycle(uint64_t cycle) {
-  if (next_ray_ < rays_.size()) {
-    const Ray& r = rays_[next_ray_];
+  if (!has_pending_) has_pending_ = queue_->Take(core_, &pending_ray_);
+  if (has_pending_) {
+    const Ray& r = rays_[pending_ray_];
     const uint32_t words[8] = {fp::BitsOf(r.o.x), fp::BitsOf(r.o.y), fp::BitsOf(r.o.z), fp::BitsOf(r.d.x),
                                fp::BitsOf(r.d.y), fp::BitsOf(r.d.z), fp::BitsOf(r.tmin), fp::BitsOf(r.tmax)};
     SetWide(top_.ray_i.data(), 8, words);
-    top_.ray_id_i = static_cast<uint32_t>(next_ray_);
+    top_.ray_id_i = static_cast<uint32_t>(pending_ray_);
     top_.ray_any_i = options_.reference.query == Query::kAny;
     top_.ray_valid_i = 1;
-    if (options_.trace_ray >= 0 && static_cast<int64_t>(next_ray_) == options_.trace_ray) dump_wanted_ = true;
+    if (options_.trace_ray >= 0 && static_cast<int64_t>(pending_ray_) == options_.trace_ray) dump_wanted_ = true;
   } else {
     top_.ray_valid_i = 0;
   }
@@ -111,6 +131,7 @@ void CoreHarness::EndCycle(uint64_t cycle) {
   }
 
   if (top_.mem_req_valid_o && top_.mem_req_ready_i) {
+    ++result_.mem_requests;
     try {
       memory_.Request(top_.mem_req_addr_o, static_cast<uint16_t>(top_.mem_req_tag_o), cycle);
     } catch (const MemoryError& e) {
@@ -118,7 +139,9 @@ void CoreHarness::EndCycle(uint64_t cycle) {
     }
   }
   if (top_.ray_valid_i && top_.ray_ready_o) {
-    ++next_ray_;
+    sent_flag_[pending_ray_] = 1;
+    has_pending_ = false;
+    ++sent_;
     ++in_flight_;
     if (in_flight_ > result_.max_in_flight) result_.max_in_flight = in_flight_;
   }
@@ -131,9 +154,10 @@ void CoreHarness::EndCycle(uint64_t cycle) {
     got.u = fp::FloatOf(top_.hit_u_o);
     got.v = fp::FloatOf(top_.hit_v_o);
     const bool hit_flag = top_.hit_o;
-    if (id >= rays_.size() || received_flag_[id]) {
+    if (id >= rays_.size() || !sent_flag_[id] || received_flag_[id]) {
       throw SimFailure("protocol error at cycle " + std::to_string(cycle) + ": hit record for ray id " +
-                       std::to_string(id) + (id >= rays_.size() ? ", which was never sent" : ", which already returned"));
+                       std::to_string(id) +
+                       (id >= rays_.size() || !sent_flag_[id] ? ", which was never sent" : ", which already returned"));
     }
     if (hit_flag != got.IsHit()) {
       throw SimFailure("protocol error at cycle " + std::to_string(cycle) + ": ray " + std::to_string(id) +
@@ -141,7 +165,9 @@ void CoreHarness::EndCycle(uint64_t cycle) {
     }
     CheckHit(cycle, id, got, top_.hit_overflow_o);
     received_flag_[id] = 1;
+    result_.ray_ids.push_back(id);
     ++received_;
+    queue_->Returned();
     --in_flight_;
     last_hit_cycle_ = cycle;
     trace_ray_done = options_.trace_ray >= 0 && static_cast<int64_t>(id) == options_.trace_ray;
@@ -149,12 +175,12 @@ void CoreHarness::EndCycle(uint64_t cycle) {
   if (trace_ray_done) dump_wanted_ = false;
   if (cycle - last_hit_cycle_ > options_.timeout) {
     std::ostringstream s;
-    s << "timeout: no hit record for " << options_.timeout << " cycles (cycle " << cycle << "); " << next_ray_ << " of "
+    s << "timeout: no hit record for " << options_.timeout << " cycles (cycle " << cycle << "); " << sent_ << " of "
       << rays_.size() << " rays sent, " << received_ << " returned, " << memory_.outstanding()
       << " memory reads outstanding; rays in flight:";
     int listed = 0;
-    for (size_t i = 0; i < next_ray_ && listed < 16; ++i) {
-      if (!received_flag_[i]) {
+    for (size_t i = 0; i < rays_.size() && listed < 16; ++i) {
+      if (sent_flag_[i] && !received_flag_[i]) {
         s << " " << i;
         ++listed;
       }
@@ -204,7 +230,7 @@ void CoreHarness::Progress(uint64_t cycle, bool final_line) {
   if (!final_line && now - last_progress_ < std::chrono::milliseconds(500)) return;
   last_progress_ = now;
   const double secs = std::chrono::duration<double>(now - start_).count();
-  std::fprintf(stderr, "\rsim: %zu/%zu rays, %" PRIu64 " cycles, %.0f kcycles/s%s", received_, rays_.size(), cycle,
+  std::fprintf(stderr, "\rsim: %zu/%zu rays, %" PRIu64 " cycles, %.0f kcycles/s%s", queue_->returned(), rays_.size(), cycle,
                secs > 0 ? cycle / secs * 1e-3 : 0.0, final_line ? "\n" : "");
   std::fflush(stderr);
 }

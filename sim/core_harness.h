@@ -14,6 +14,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -38,6 +39,25 @@ class SimFailure : public std::runtime_error {
   explicit SimFailure(const std::string& what) : std::runtime_error(what) {}
 };
 
+// Hands out ray ids (indices in the ray list) to one or several cores, in
+// order, a chunk of consecutive rays at a time: a core takes its chunk's
+// rays one by one and then the next free chunk (kdrt sim --cores N shares
+// one queue between all cores, docs/simulator.md).
+class RayQueue {
+ public:
+  RayQueue(size_t count, int cores, size_t chunk);
+  bool Take(int core, size_t* id);
+  // Nothing is left for `core` (its chunk is used up and no chunk is free).
+  bool Exhausted(int core) const { return cur_[core] >= end_[core] && next_ >= count_; }
+  size_t count() const { return count_; }
+  size_t returned() const { return returned_; }
+  void Returned() { ++returned_; }
+
+ private:
+  size_t count_, chunk_, next_ = 0, returned_ = 0;
+  std::vector<size_t> cur_, end_;
+};
+
 struct HarnessOptions {
   TraceOptions reference;       // format of the model the RTL is compared with
   uint64_t timeout = 1000000;   // cycles without a hit record
@@ -48,9 +68,13 @@ struct HarnessOptions {
 class CoreHarness {
  public:
   // `reference` holds the model's hit for every ray (TraceRays with the same
-  // format). The harness keeps references to every argument.
+  // format). The harness keeps references to every argument. Without a
+  // `queue` it sends every ray in order; with one it sends what `queue` gives
+  // core `core` (hits and overflow flags stay indexed by ray id; the other
+  // cores' entries stay empty).
   CoreHarness(Vrt_core& top, const ImageView& image, const std::vector<Ray>& rays,
-              const std::vector<Hit>& reference, MemoryPort& memory, const HarnessOptions& options);
+              const std::vector<Hit>& reference, MemoryPort& memory, const HarnessOptions& options,
+              RayQueue* queue = nullptr, int core = 0);
 
   // The start of every run, whatever loop drives the clock: static inputs
   // (bases, bounds), idle streams, the waveform (if `trace_path` is set), reset.
@@ -59,7 +83,8 @@ class CoreHarness {
   // handshakes and check what left the core, rising edge. Throws SimFailure on
   // a mismatch, a protocol violation or a timeout.
   void Cycle(SimCtrl<Vrt_core>& ctrl);
-  bool Done() const { return received_ == rays_.size(); }
+  bool Done() const { return !has_pending_ && in_flight_ == 0 && queue_->Exhausted(core_); }
+  uint64_t rays_returned() const { return received_; }
   // After the last cycle: the counters, the cycles, the memory's figures.
   RunOutcome Finish(SimCtrl<Vrt_core>& ctrl, const MemoryModel& memory);
 
@@ -79,8 +104,13 @@ class CoreHarness {
   MemoryPort& memory_;
   HarnessOptions options_;
   HarnessResult result_;
-  std::vector<uint8_t> received_flag_;
-  size_t next_ray_ = 0;
+  std::vector<uint8_t> received_flag_, sent_flag_;
+  std::unique_ptr<RayQueue> own_queue_;
+  RayQueue* queue_;
+  int core_;
+  bool has_pending_ = false;  // pending_ray_ is offered on ray_valid_i until taken
+  size_t pending_ray_ = 0;
+  size_t sent_ = 0;
   size_t received_ = 0;
   uint64_t in_flight_ = 0;
   uint64_t last_hit_cycle_ = 0;

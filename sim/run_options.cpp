@@ -19,6 +19,15 @@ void AddRunOptions(CLI::App& cmd, RunOptions& o) {
   cmd.add_option("--trace-ray", o.trace_ray, "With --trace: dump only while ray K (its index) is in flight");
   cmd.add_flag("--progress", o.progress, "Progress line on stderr (default: when stderr is a terminal)");
   cmd.add_flag("--systemc", o.systemc, "Run the core inside the SystemC top");
+  cmd.add_option("--cores", o.cores,
+                 "Run N cores (SystemC system model) sharing an L2 cache and the memory; rays from one shared "
+                 "queue (default: one core, no L2)")
+      ->check(CLI::Range(1, 64));
+  cmd.add_option("--l2-kb", o.l2_kb, "With --cores: L2 size in KiB (64-byte lines)")->capture_default_str();
+  cmd.add_option("--l2-ways", o.l2_ways, "With --cores: L2 associativity (LRU)")->capture_default_str();
+  cmd.add_option("--l2-latency", o.l2_latency, "With --cores: L2 hit latency in cycles")->capture_default_str();
+  cmd.add_option("--ray-chunk", o.ray_chunk, "With --cores: consecutive rays a core takes from the queue at once")
+      ->capture_default_str();
   // Hidden: lets the tests see the co-simulation checker fire.
   cmd.add_option("--corrupt-reference", o.corrupt_reference,
                  "Test hook: change the expected record of ray K so the checker must report it")
@@ -30,6 +39,14 @@ void CheckRunOptions(const RunOptions& o) {
   if (o.mem_latency < 1) throw InputError("--mem-latency must be at least 1 cycle");
   if (!(o.mem_bw > 0) || !std::isfinite(o.mem_bw)) throw InputError("--mem-bw must be a positive number");
   if (o.timeout < 1) throw InputError("--timeout must be at least 1 cycle");
+  if (o.cores > 0) {
+    if (o.l2_ways < 1 || o.l2_kb < 1 || (o.l2_kb * 1024u) % (64u * o.l2_ways) != 0) {
+      throw InputError("--l2-kb " + std::to_string(o.l2_kb) + " --l2-ways " + std::to_string(o.l2_ways) +
+                       ": the L2 must hold a whole number of sets of 64-byte lines");
+    }
+    if (o.l2_latency < 1) throw InputError("--l2-latency must be at least 1 cycle");
+    if (o.ray_chunk < 1) throw InputError("--ray-chunk must be at least 1");
+  }
 }
 
 std::vector<std::string> RunOptionArgs(const RunOptions& o, const std::string& trace_path) {
@@ -43,6 +60,11 @@ std::vector<std::string> RunOptionArgs(const RunOptions& o, const std::string& t
   if (o.trace_ray >= 0) a.insert(a.end(), {"--trace-ray", std::to_string(o.trace_ray)});
   if (o.progress) a.push_back("--progress");
   if (o.systemc) a.push_back("--systemc");
+  if (o.cores > 0) {
+    a.insert(a.end(), {"--cores", std::to_string(o.cores), "--l2-kb", std::to_string(o.l2_kb), "--l2-ways",
+                       std::to_string(o.l2_ways), "--l2-latency", std::to_string(o.l2_latency), "--ray-chunk",
+                       std::to_string(o.ray_chunk)});
+  }
   if (o.corrupt_reference >= 0) a.insert(a.end(), {"--corrupt-reference", std::to_string(o.corrupt_reference)});
   return a;
 }

@@ -24,6 +24,13 @@ struct RunOptions {
   int64_t trace_ray = -1;      // dump only while this ray is in flight
   bool progress = false;
   bool systemc = false;
+  // Several cores (the SystemC system model): 0 = one core straight on the
+  // memory (no L2); N >= 1 = N cores sharing an L2 in front of the memory.
+  int cores = 0;
+  uint32_t l2_kb = 256;
+  uint32_t l2_ways = 8;
+  uint32_t l2_latency = 10;
+  uint32_t ray_chunk = 64;  // consecutive rays a core takes from the shared queue at once
   int64_t corrupt_reference = -1;  // test hook: falsify the reference of this ray
 };
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/ray.h"
+#include "sim/l2_cache.h"
 #include "sim/perf_layout.h"  // generated from perf_t in rtl/kdrt_pkg.sv
 
 namespace kdrt::sim {
@@ -25,6 +26,8 @@ struct HarnessResult {
   uint64_t overflows = 0;
   uint64_t hit_count = 0;
   uint64_t max_in_flight = 0;
+  uint64_t mem_requests = 0;       // 16-byte reads this core issued
+  std::vector<uint32_t> ray_ids;   // the rays this core returned, in return order
   double wall_seconds = 0;
 };
 
@@ -33,6 +36,16 @@ struct RunOutcome {
   uint64_t mem_bytes_read = 0;
   uint64_t mem_requests = 0;
   uint64_t mem_max_outstanding = 0;
+};
+
+// Several cores sharing an L2 (sim/sc_top.h, RunSystemCCores).
+struct SystemOutcome {
+  std::vector<RunOutcome> cores;  // cycles: when the core returned its last ray
+  uint64_t cycles = 0;            // the last core's
+  uint64_t mem_bytes_read = 0, mem_requests = 0, mem_max_outstanding = 0;
+  L2Config l2_config;
+  L2Stats l2;
+  double wall_seconds = 0;
 };
 
 }  // namespace kdrt::sim

@@ -8,9 +8,16 @@
 #pragma once
 
 #include "sim/core_harness.h"
+#include "sim/l2_cache.h"
 
 namespace kdrt::sim {
 
 RunOutcome RunSystemC(const RunSpec& spec);
+
+// Several cores (kdrt sim --cores N): N core modules, each its own Verilated
+// rt_core and harness, take rays from one shared queue (RayQueue, chunks of
+// `chunk` rays) and read through one shared L2 module (SharedL2) in front of
+// the memory module. The waveform, if any, is core 0's.
+SystemOutcome RunSystemCCores(const RunSpec& spec, int cores, const L2Config& l2, size_t chunk);
 
 }  // namespace kdrt::sim

@@ -90,7 +90,8 @@ int Run(const ModelArgs& args) {
   to.format = config.Format();
   to.query = query;
   TraceStats ts;
-  std::vector<Hit> reference = TraceRays(image, rays, to, &ts);
+  std::vector<RayCounters> per_ray;
+  std::vector<Hit> reference = TraceRays(image, rays, to, &ts, &per_ray);
   const int64_t corrupt = args.run.corrupt_reference;
   if (corrupt >= 0 && corrupt < static_cast<int64_t>(rays.size())) {
     Hit& h = reference[corrupt];
@@ -110,29 +111,53 @@ int Run(const ModelArgs& args) {
   spec.options.progress = args.run.progress;
   spec.trace_path = args.run.trace;
 
+  ReportInputs ri;
+  ri.loop = args.run.systemc || args.run.cores > 0 ? "systemc" : "verilator";
+  ri.config = config;
+  ri.requirements = req;
+  ri.memory = spec.memory;
+  ri.reference_totals = ts.totals;
+  ri.rays = rays.size();
+  ri.query = query;
+
   RunOutcome run;
+  nlohmann::json report;
   try {
+    if (args.run.cores > 0) {
 #ifdef KDRT_SIM_SYSTEMC
-    run = args.run.systemc ? RunSystemC(spec) : RunVerilator(spec);
+      L2Config l2;
+      l2.size_bytes = args.run.l2_kb * 1024u;
+      l2.ways = args.run.l2_ways;
+      l2.latency = args.run.l2_latency;
+      const SystemOutcome sys = RunSystemCCores(spec, args.run.cores, l2, args.run.ray_chunk);
+      // The records as a single core would hold them: each ray's from its core.
+      run.result.hits.assign(rays.size(), Hit{});
+      run.result.overflow.assign(rays.size(), 0);
+      for (const RunOutcome& c : sys.cores) {
+        for (uint32_t id : c.result.ray_ids) {
+          run.result.hits[id] = c.result.hits[id];
+          run.result.overflow[id] = c.result.overflow[id];
+        }
+        run.result.overflows += c.result.overflows;
+      }
+      report = SystemReportJson(ri, sys, per_ray);
 #else
-    run = RunVerilator(spec);
+      throw InputError("--cores: this model was built without SystemC (install libsystemc-dev and rebuild)");
 #endif
+    } else {
+#ifdef KDRT_SIM_SYSTEMC
+      run = args.run.systemc ? RunSystemC(spec) : RunVerilator(spec);
+#else
+      run = RunVerilator(spec);
+#endif
+      ri.run = &run;
+      report = ReportJson(ri);
+    }
   } catch (const SimFailure& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "\nkdrt sim: %s\n", e.what());
     return 3;
   }
-
-  ReportInputs ri;
-  ri.loop = args.run.systemc ? "systemc" : "verilator";
-  ri.config = config;
-  ri.requirements = req;
-  ri.memory = spec.memory;
-  ri.reference_totals = ts.totals;
-  ri.run = &run;
-  ri.rays = rays.size();
-  ri.query = query;
-  const nlohmann::json report = ReportJson(ri);
 
   OutputSet outputs;
   outputs.Add(args.hits_out, [&](const std::string& tmp) {

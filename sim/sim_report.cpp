@@ -124,6 +124,86 @@ nlohmann::json ReportJson(const ReportInputs& in) {
   };
 }
 
+nlohmann::json SystemReportJson(const ReportInputs& in, const SystemOutcome& sys,
+                                const std::vector<RayCounters>& per_ray) {
+  const double n = static_cast<double>(sys.cores.size());
+  // The whole run as one core of N x cycles: shares of core-cycles.
+  RunOutcome all;
+  all.result.cycles = static_cast<uint64_t>(n) * sys.cycles;
+  all.result.wall_seconds = sys.wall_seconds;
+  for (const RunOutcome& c : sys.cores) {
+    for (int b = 0; b < kPerfBits; ++b) all.result.perf[b] += c.result.perf[b];
+    for (size_t k = 0; k < all.result.thread_states.size(); ++k) {
+      all.result.thread_states[k] += c.result.thread_states[k];
+    }
+    // A core done before the last one spends the rest of the run idle: its
+    // threads are FREE.
+    uint64_t thread_cycles = 0;
+    for (uint64_t v : c.result.thread_states) thread_cycles += v;
+    if (c.result.cycles > 0) {
+      all.result.thread_states[0] += (sys.cycles - c.result.cycles) * (thread_cycles / c.result.cycles);
+    }
+    all.result.hit_count += c.result.hit_count;
+    all.result.overflows += c.result.overflows;
+    all.result.max_in_flight += c.result.max_in_flight;
+  }
+  all.mem_bytes_read = sys.mem_bytes_read;
+  all.mem_requests = sys.mem_requests;
+  all.mem_max_outstanding = sys.mem_max_outstanding;
+  ReportInputs whole = in;
+  whole.run = &all;
+  nlohmann::json j = ReportJson(whole);
+
+  const double cycles = static_cast<double>(sys.cycles), rays = static_cast<double>(in.rays);
+  const double bound = j["bound_cycles_per_ray"].get<double>() / n;
+  const double mem_bound = Ratio(Ratio(sys.mem_bytes_read, rays), in.memory.bytes_per_cycle);
+  j["cycles"] = sys.cycles;
+  j["core_cycles"] = all.result.cycles;
+  j["rays_per_cycle"] = Ratio(rays, cycles);
+  j["cycles_per_ray"] = Ratio(cycles, rays);
+  j["bound_cycles_per_ray"] = bound;
+  j["efficiency"] = Ratio(bound, Ratio(cycles, rays));
+  j["memory"]["bytes_per_cycle_used"] = Ratio(sys.mem_bytes_read, cycles);
+  j["memory_bound_cycles_per_ray"] = mem_bound;
+  j["efficiency_vs_both_bounds"] = Ratio(std::max(bound, mem_bound), Ratio(cycles, rays));
+  j["sim_cycles_per_second"] = Ratio(cycles, sys.wall_seconds);
+  j["cores"] = sys.cores.size();
+
+  nlohmann::json cores = nlohmann::json::array();
+  for (const RunOutcome& c : sys.cores) {
+    ReportInputs one = in;
+    RunOutcome co = c;
+    co.mem_bytes_read = kBeatBytes * c.result.mem_requests;  // what the core read from the L2
+    co.mem_requests = c.result.mem_requests;
+    one.run = &co;
+    one.rays = c.result.ray_ids.size();
+    one.reference_totals = RayCounters{};
+    for (uint32_t id : c.result.ray_ids) one.reference_totals += per_ray[id];
+    const nlohmann::json cj = ReportJson(one);
+    cores.push_back({{"rays", cj["rays"]},
+                     {"cycles", cj["cycles"]},
+                     {"cycles_per_ray", cj["cycles_per_ray"]},
+                     {"bound_cycles_per_ray", cj["bound_cycles_per_ray"]},
+                     {"efficiency", cj["efficiency"]},
+                     {"l2_bytes_per_ray", cj["memory"]["bytes_per_ray"]},
+                     {"utilisation", cj["utilisation"]},
+                     {"cache_hit_rate", cj["cache_hit_rate"]},
+                     {"stalls", cj["stalls"]}});
+  }
+  j["per_core"] = cores;
+  j["l2"] = {{"size_bytes", sys.l2_config.size_bytes},
+             {"ways", sys.l2_config.ways},
+             {"line_bytes", sys.l2_config.line_bytes},
+             {"latency", sys.l2_config.latency},
+             {"requests", sys.l2.requests},
+             {"hits", sys.l2.hits},
+             {"merged_misses", sys.l2.merged},
+             {"line_fills", sys.l2.line_fills},
+             {"hit_rate", Ratio(sys.l2.hits, sys.l2.requests)},
+             {"bytes_per_ray", Ratio(kBeatBytes * sys.l2.requests, rays)}};
+  return j;
+}
+
 void AddScene(const SceneFacts& f, nlohmann::json* report) {
   nlohmann::json& j = *report;
   j["scene"] = f.scene;
@@ -214,6 +294,26 @@ nlohmann::json FrameTotals(const nlohmann::json& passes) {
           {"bound_cycles_per_ray", Ratio(bound, rays)},
           {"efficiency", Ratio(bound, cycles)},
           {"bytes_per_ray", Ratio(bytes, rays)}};
+}
+
+void PrintCores(const nlohmann::json& j, std::FILE* out) {
+  if (!j.contains("per_core")) return;
+  const auto d = [](const nlohmann::json& v) { return v.get<double>(); };
+  const auto u = [](const nlohmann::json& v) { return static_cast<unsigned long long>(v.get<uint64_t>()); };
+  std::fprintf(out, "cores          %llu sharing the L2; cycles, rays per cycle and bound above are the system's\n",
+               u(j["cores"]));
+  int k = 0;
+  for (const auto& c : j["per_core"]) {
+    std::fprintf(out, "  core %-3d     %llu rays, done at cycle %llu, %.2f cycles per ray (bound %.2f, %.1f %%), "
+                 "%.1f L2 B/ray, node cache %.1f %%\n",
+                 k++, u(c["rays"]), u(c["cycles"]), d(c["cycles_per_ray"]), d(c["bound_cycles_per_ray"]),
+                 100 * d(c["efficiency"]), d(c["l2_bytes_per_ray"]), 100 * d(c["cache_hit_rate"]["node"]));
+  }
+  const auto& l2 = j["l2"];
+  std::fprintf(out, "L2             %llu KiB, %llu ways, %llu-byte lines, latency %llu: %llu reads, %.1f %% hits, "
+               "%llu merged misses, %llu line fills, %.1f B/ray\n",
+               u(l2["size_bytes"]) / 1024, u(l2["ways"]), u(l2["line_bytes"]), u(l2["latency"]), u(l2["requests"]),
+               100 * d(l2["hit_rate"]), u(l2["merged_misses"]), u(l2["line_fills"]), d(l2["bytes_per_ray"]));
 }
 
 void PrintPasses(const nlohmann::json& passes, const nlohmann::json& totals, std::FILE* out) {

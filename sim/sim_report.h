@@ -29,6 +29,16 @@ struct ReportInputs {
 
 nlohmann::json ReportJson(const ReportInputs& in);
 
+// The report of several cores (kdrt sim --cores N): `in` describes the whole
+// run (in.run unused); the unit, cache and thread figures are averages over
+// the cores (counts summed, divided by N x cycles), cycles are the system's
+// (the last core's), the bound is the per-core bound divided by N, and the
+// memory figures are the memory's behind the L2. Adds "cores" (N),
+// "per_core" (rays, cycles, cycles per ray, bound, efficiency, L2 reads per
+// ray, utilisation, cache hit rates of each core) and "l2".
+nlohmann::json SystemReportJson(const ReportInputs& in, const SystemOutcome& sys,
+                                const std::vector<RayCounters>& per_ray);
+
 // What only the front end knows: the scene, its tree and the image size.
 struct SceneFacts {
   std::string scene;
@@ -48,6 +58,8 @@ void PrintReport(const nlohmann::json& report, std::FILE* out);
 // summed over the passes.
 nlohmann::json FrameTotals(const nlohmann::json& passes);
 // One line per pass and one for the frame.
+// With "per_core" in the report: one line per core and the L2's.
+void PrintCores(const nlohmann::json& report, std::FILE* out);
 void PrintPasses(const nlohmann::json& passes, const nlohmann::json& totals, std::FILE* out);
 
 }  // namespace kdrt::sim

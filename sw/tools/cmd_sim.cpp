@@ -138,6 +138,7 @@ int RunSim(SimArgs args) {
 
   if (!args.quiet) {
     sim::PrintReport(report, stdout);
+    sim::PrintCores(report, stdout);
     if (args.shading.On()) sim::PrintPasses(report["passes"], report["frame"], stdout);
     if (!out.empty()) std::printf("image          %s\n", out.c_str());
     if (!args.hits.empty()) std::printf("hit buffer     %s\n", args.hits.c_str());

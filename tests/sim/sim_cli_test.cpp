@@ -243,6 +243,38 @@ TEST_F(SimCli, ShadingOptionErrorsWriteNothing) {
   EXPECT_FALSE(fs::exists(Path("y.png")));
 }
 
+// Several cores (SystemC system model) share an L2 and the memory: the
+// records are the reference's whoever traced each ray, every core works,
+// and four cores trace more rays per cycle than one.
+TEST_F(SimCli, SeveralCoresShareTheL2) {
+  const std::string common = "gen:balls:800 --res 32x32";
+  ASSERT_EQ(RunKdrt("render " + common + " -q --hits " + Path("render.exr")).exit_code, 0);
+  const RunResult one = RunKdrt("sim " + common + " --cores 1 -q --json " + Path("c1.json"));
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const RunResult four = RunKdrt("sim " + common + " --cores 4 --ray-chunk 16 --hits " + Path("c4.exr") +
+                                 " --json " + Path("c4.json"));
+  ASSERT_EQ(four.exit_code, 0) << four.output;
+  EXPECT_NE(four.output.find("core 3"), std::string::npos) << four.output;
+  ExpectSameHitBuffers(Path("render.exr"), Path("c4.exr"));
+  const nlohmann::json j1 = ReadJson(Path("c1.json")), j4 = ReadJson(Path("c4.json"));
+  EXPECT_EQ(j4["cores"].get<int>(), 4);
+  EXPECT_EQ(j4["loop"], "systemc");
+  ASSERT_EQ(j4["per_core"].size(), 4u);
+  uint64_t rays = 0, last = 0;
+  for (const auto& c : j4["per_core"]) {
+    EXPECT_GT(c["rays"].get<uint64_t>(), 0u);
+    rays += c["rays"].get<uint64_t>();
+    last = std::max(last, c["cycles"].get<uint64_t>());
+  }
+  EXPECT_EQ(rays, 32u * 32u);
+  EXPECT_EQ(j4["cycles"].get<uint64_t>(), last);
+  EXPECT_GT(j4["l2"]["hits"].get<uint64_t>(), 0u);
+  EXPECT_LE(j4["memory"]["bytes_read"].get<uint64_t>(), 16 * j4["l2"]["requests"].get<uint64_t>());
+  EXPECT_GT(j4["rays_per_cycle"].get<double>(), 1.5 * j1["rays_per_cycle"].get<double>());
+  EXPECT_GE(j4["cycles_per_ray"].get<double>(), j4["bound_cycles_per_ray"].get<double>());
+  ExpectConsistentBreakdown(j4);
+}
+
 // Coherent primary rays ask for the same node lines at once: the node cache
 // merges those misses into one fetch (rtl/rt_cache.sv, CacheTargets), and
 // the report counts them.
