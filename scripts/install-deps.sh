@@ -10,6 +10,7 @@ PACKAGES=(
   libgtest-dev libembree-dev libmpfr-dev libgmp-dev
   verilator libsystemc-dev yosys
   chromium  # the screenshot test of the kdrt trade page
+  python3 python3-yaml python3-distributed  # kdrt sweep: the spec, the Dask cluster
 )
 
 missing=()

@@ -42,6 +42,7 @@ struct SimArgs {
   bool quiet = false;
   bool strict = false;
   bool which_model = false;  // print the model choice and stop
+  bool build_model = false;  // build the model if needed and stop
   ShadingArgs shading;
 };
 
@@ -72,6 +73,11 @@ int RunSim(SimArgs args) {
     std::printf("model          %s (%s)\n", choice.config.Key().c_str(), choice.prebuilt ? "prebuilt" : "scene-sized");
     const char* state = loc.built ? "built" : loc.stale ? "out of date: sources changed, rebuilt on use" : "not built yet";
     std::printf("executable     %s (%s)\n", loc.path.c_str(), state);
+    return 0;
+  }
+  if (args.build_model) {
+    if (!loc.built) sim::BuildModel(choice, loc);
+    std::printf("model          %s: %s\n", choice.config.Key().c_str(), loc.path.c_str());
     return 0;
   }
   const RaySet ray_set = MakeRays(p.scene, args.rays, args.camera, args.res);
@@ -172,6 +178,8 @@ Runner AddSimCommand(CLI::App& app) {
                 "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");
   cmd->add_flag("--which-model", args->which_model,
                 "Print the model the scene needs and whether it is built; run nothing");
+  cmd->add_flag("--build-model", args->build_model,
+                "Build the model the scene needs (if it is missing or out of date) and stop; run nothing");
   return [cmd, args]() { return cmd->parsed() ? RunSim(*args) : -1; };
 }
 

@@ -19,5 +19,6 @@ Runner AddSimCommand(CLI::App& app);
 Runner AddCompareCommand(CLI::App& app);
 Runner AddExtremesCommand(CLI::App& app);
 Runner AddTradeCommand(CLI::App& app);
+Runner AddSweepCommand(CLI::App& app);
 
 }  // namespace kdrt::cli

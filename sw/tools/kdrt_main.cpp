@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       kdrt::cli::AddCompareCommand(app),
       kdrt::cli::AddExtremesCommand(app),
       kdrt::cli::AddTradeCommand(app),
+      kdrt::cli::AddSweepCommand(app),
   };
   try {
     try {

@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# kdrt sweep (docs/sweep.md): a small sweep on the local pool; again (nothing
+# runs: resumed); through a real Dask cluster on 127.0.0.1 (a dask-scheduler
+# and two dask-worker processes, stopped at the end) with the same results as
+# the local run, both workers used; and the spec errors.
+# Usage: dask_sweep_test.sh KDRT
+set -euo pipefail
+kdrt=$1
+work=$(mktemp -d)
+pids=()
+cleanup() {
+  for p in "${pids[@]}"; do kill "$p" 2> /dev/null || true; done
+  for p in "${pids[@]}"; do wait "$p" 2> /dev/null || true; done
+  rm -rf "$work"
+}
+trap cleanup EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+cat > "$work/spec.yaml" << 'SPEC'
+scenes: [gen:balls:300, gen:room:300]
+formats: [fp32, fp16]
+res: 8x8
+params:
+  mem_latency: [20, 60]
+SPEC
+
+"$kdrt" sweep "$work/spec.yaml" -o "$work/local" --jobs 2 > "$work/local.out" 2> "$work/local.err" ||
+  { cat "$work/local.err"; fail "local sweep"; }
+[ "$(ls "$work/local/points" | wc -l)" = 8 ] || fail "expected 8 point files"
+[ "$(wc -l < "$work/local/sweep.csv")" = 9 ] || fail "expected 8 rows and a header in sweep.csv"
+ls "$work/local/plots/"*mem_latency.svg > /dev/null || fail "no plot of cycles per ray against mem_latency"
+
+# Resumed: every point is there, nothing runs, the same CSV.
+cp "$work/local/sweep.csv" "$work/first.csv"
+"$kdrt" sweep "$work/spec.yaml" -o "$work/local" > /dev/null 2> "$work/again.err" || fail "second local sweep"
+grep -q "8 done already, 0 to run" "$work/again.err" || { cat "$work/again.err"; fail "the second run ran points"; }
+cmp -s "$work/first.csv" "$work/local/sweep.csv" || fail "the resumed sweep changed sweep.csv"
+
+# A Dask cluster on loopback.
+port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+dask-scheduler --host 127.0.0.1 --port "$port" --no-dashboard > "$work/scheduler.log" 2>&1 &
+pids+=($!)
+for w in w1 w2; do
+  dask-worker "tcp://127.0.0.1:$port" --nthreads 1 --nworkers 1 --name "$w" --no-dashboard \
+    --local-directory "$work/$w" > "$work/$w.log" 2>&1 &
+  pids+=($!)
+done
+/usr/bin/python3 - "$port" << 'PY' || { cat "$work/scheduler.log" "$work/w1.log" "$work/w2.log"; fail "cluster did not start"; }
+import sys, time
+from distributed import Client
+deadline = time.time() + 60
+while True:
+    try:
+        c = Client("tcp://127.0.0.1:%s" % sys.argv[1], timeout=5)
+        break
+    except OSError:
+        if time.time() > deadline:
+            raise
+        time.sleep(0.5)
+c.wait_for_workers(2, timeout=60)
+c.close()
+PY
+"$kdrt" sweep "$work/spec.yaml" -o "$work/dask" --scheduler "tcp://127.0.0.1:$port" > "$work/dask.out" \
+  2> "$work/dask.err" || { cat "$work/dask.err"; fail "sweep on the Dask cluster"; }
+/usr/bin/python3 - "$work/local/sweep.csv" "$work/dask/sweep.csv" "$work/dask/points" << 'PY' || fail "results differ"
+import csv, json, os, sys
+def rows(path):
+    return {r["id"]: {k: v for k, v in r.items() if k != "sim_seconds"} for r in csv.DictReader(open(path))}
+local, dask = rows(sys.argv[1]), rows(sys.argv[2])
+assert len(local) == 8 and local == dask, "local and Dask results differ"
+assert all(float(r["cycles"]) > 0 for r in local.values())
+workers = {json.load(open(os.path.join(sys.argv[3], f)))["ran_on"] for f in os.listdir(sys.argv[3])}
+assert workers == {"w1", "w2"}, "points ran on %s, expected both workers" % sorted(workers)
+PY
+
+# Spec errors: named, exit 1, nothing written.
+printf 'scenes: [gen:room:300]\nparams:\n  no_such_param: [1]\n' > "$work/bad1.yaml"
+printf 'scenes: [gen:room:300]\nmodel: fast\n' > "$work/bad2.yaml"
+printf 'scenes: [gen:room:300\n' > "$work/bad3.yaml"
+for b in bad1:no_such_param bad2:"fast cycle model is not built" bad3:"not valid YAML"; do
+  f=${b%%:*}
+  want=${b#*:}
+  set +e
+  "$kdrt" sweep "$work/$f.yaml" -o "$work/$f.out" > /dev/null 2> "$work/$f.err"
+  rc=$?
+  set -e
+  [ "$rc" = 1 ] || fail "$f: exit $rc, expected 1"
+  grep -q "$want" "$work/$f.err" || { cat "$work/$f.err"; fail "$f: message"; }
+  grep -q "$f.yaml" "$work/$f.err" || fail "$f: the message does not name the file"
+  [ ! -e "$work/$f.out" ] || fail "$f: wrote output"
+done
+echo "PASS: kdrt sweep (local, resumed, Dask cluster of 2 workers, spec errors)"
