@@ -7,11 +7,12 @@
 namespace kdrt {
 
 PrecisionCheck CheckPrecision(const ImageView& image, const std::vector<Ray>& rays, const fp::Format& format,
-                              bool strict, int threads) {
+                              bool strict, int threads, const std::string& rays_name) {
   PrecisionCheck check;
   check.requirement = AnalyzePrecision(image, rays, threads);
-  const std::string shortfall = check.requirement.Shortfall(format);
+  std::string shortfall = check.requirement.Shortfall(format);
   if (shortfall.empty()) return check;
+  if (!rays_name.empty()) shortfall += " (" + rays_name + " rays)";
   if (strict) throw InputError(shortfall + " (--strict)");
   std::fprintf(stderr, "kdrt: warning: %s\n", shortfall.c_str());
   check.warnings.push_back(shortfall);

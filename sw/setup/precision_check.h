@@ -20,7 +20,9 @@ struct PrecisionCheck {
 
 // Prints each warning on stderr as "kdrt: warning: <text>"; with `strict`
 // throws InputError(<text>) instead (the caller then writes nothing).
+// `rays_name` (e.g. "shadow", for a shaded frame's passes) is named in the
+// text when given.
 PrecisionCheck CheckPrecision(const ImageView& image, const std::vector<Ray>& rays, const fp::Format& format,
-                              bool strict, int threads);
+                              bool strict, int threads, const std::string& rays_name = "");
 
 }  // namespace kdrt

@@ -107,6 +107,11 @@ int Run(const RenderArgs& args) {
   ShadedFrame frame;
   if (args.shading.On()) {
     const PassTracer trace = [&](const RayPass& pass, nlohmann::json* stats) {
+      // Secondary rays start on surfaces: they get their own precision check.
+      for (const std::string& w :
+           CheckPrecision(image, pass.rays, to.format, args.strict, args.threads, pass.name).warnings) {
+        j["warnings"].push_back(w);
+      }
       TraceOptions po = to;
       po.query = pass.query;
       po.progress = false;

@@ -122,6 +122,9 @@ int RunSim(SimArgs args) {
     pass_run.trace_ray = -1;
     const PassTracer trace = [&](const RayPass& pass, nlohmann::json* stats) {
       if (!args.quiet) std::fprintf(stderr, "kdrt sim: %s pass, %zu rays\n", pass.name.c_str(), pass.rays.size());
+      for (const std::string& w : CheckPrecision(image, pass.rays, format, args.strict, 0, pass.name).warnings) {
+        report["warnings"].push_back(w);
+      }
       sim::ModelRun r = sim::RunModel(loc, choice.config, core_image, pass.rays, pass_run, "", pass.query);
       if (r.exit_code != 0) throw PassFailed{r.exit_code};
       *stats = std::move(r.report);

@@ -54,7 +54,7 @@ class Cli : public ::testing::Test {
 };
 
 TEST_F(Cli, HelpOnEveryCommand) {
-  for (const char* cmd : {"", "render", "info", "gen"}) {
+  for (const char* cmd : {"", "render", "info", "gen", "sim", "sweep", "trade"}) {
     const RunResult r = RunKdrt(std::string(cmd) + " --help");
     EXPECT_EQ(r.exit_code, 0) << cmd;
     EXPECT_NE(r.output.find("Usage"), std::string::npos) << cmd;
@@ -271,6 +271,24 @@ TEST_F(Cli, FormatBelowTheRequirementWarnsOrWithStrictFails) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
   EXPECT_TRUE(nlohmann::json::parse(std::ifstream(Path("f.json")))["warnings"].empty());
+}
+
+// Secondary rays start on surfaces: each pass of a shaded frame gets its own
+// precision check, named in the warning; --strict refuses it.
+TEST_F(Cli, ShadowRaysGetTheirOwnPrecisionCheck) {
+  const std::string base = "render gen:room:300 --res 8x8 --format e3m6 --shade -o " + Path("s.png");
+  RunResult r = RunKdrt(base + " --json " + Path("s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(Path("s.json")));
+  ASSERT_EQ(j["warnings"].size(), 2u) << r.output;
+  const std::string shadow = j["warnings"][1];
+  EXPECT_EQ(shadow.substr(shadow.size() - 13), "(shadow rays)") << shadow;
+  EXPECT_NE(r.output.find("kdrt: warning: " + shadow), std::string::npos) << r.output;
+  std::filesystem::remove(Path("s.png"));
+  std::filesystem::remove(Path("s.json"));
+  r = RunKdrt(base + " --strict --json " + Path("s.json"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(FileCount(), 0u);
 }
 
 TEST_F(Cli, InfoPrintsTheMinimalFormat) {
