@@ -125,7 +125,15 @@ TradeResult MeasureTrade(const PreparedScene& p, const RaySet& rays, const Trade
     const fp::Format& f = o.formats[k];
     const std::string tag = "[" + std::to_string(k + 1) + "/" + std::to_string(n) + "] " + f.Name() + ": ";
     Say(o, tag + "tracing");
-    FormatResult r = Trace(p, rays, f, o);
+    FormatResult r;
+    try {
+      r = Trace(p, rays, f, o);
+    } catch (const InputError& e) {
+      // The format's packed image cannot hold this tree (docs/memory-image.md):
+      // the other formats are still compared, and the table says why this one is missing.
+      t.notes.push_back(f.Name() + " is left out: " + e.what());
+      continue;
+    }
     r.warning = req.Shortfall(f);
     if (!r.warning.empty()) std::fprintf(stderr, "kdrt: warning: %s\n", r.warning.c_str());
     r.accuracy = CompareWithTruth(r.hits, t.truth.hits, r.rgb, t.truth.rgb);
@@ -157,6 +165,11 @@ TradeResult MeasureTrade(const PreparedScene& p, const RaySet& rays, const Trade
       t.notes.push_back("area of " + narrower + " counts rt_mem_system with fp32's 3-beat triangle cache lines; "
                         "their cores hold shorter records, so their cells and flip-flops are overestimated (docs/trade.md)");
     }
+  }
+  if (t.formats.empty()) {
+    std::string why;
+    for (const std::string& note : t.notes) why += "; " + note;
+    throw InputError("trade: no format to compare" + why);
   }
   t.recommended = Recommend(t.formats, o.target_mismatch);
   for (const std::string& note : t.notes) std::fprintf(stderr, "kdrt: note: %s\n", note.c_str());

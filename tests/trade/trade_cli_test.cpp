@@ -165,6 +165,31 @@ TEST_F(TradeCli, RefusesBadInputWithExitOneAndWritesNothing) {
   EXPECT_TRUE(fs::exists(Path("full/keep.txt")));
 }
 
+// A format whose packed image cannot hold the tree (a leaf of 70,000
+// triangles: more than a 16-bit format's node counts) is left out with a
+// note; the others are still traded. With nothing left, it is an error.
+TEST_F(TradeCli, AFormatThatCannotPackIsLeftOutAndSaid) {
+  std::string nff = "v\nfrom 0.3 0.3 5\nat 0.3 0.3 0\nup 0 1 0\nangle 30\nhither 0.1\nresolution 8 8\n";
+  for (int i = 0; i < 70000; ++i) nff += "p 3\n0 0 0\n1 0 0\n0 1 0\n";
+  std::ofstream(Path("big_leaf.nff")) << nff;
+  const std::string base = "trade " + Path("big_leaf.nff") + " --res 4x4 --no-area -q --json " + Path("t.json");
+  RunResult r = RunKdrt(base + " --formats fp24,fp16");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("kdrt: note: fp16 is left out: "), std::string::npos) << r.output;
+  std::ifstream f(Path("t.json"));
+  const nlohmann::json j = nlohmann::json::parse(f);
+  ASSERT_EQ(j["formats"].size(), 1u);
+  EXPECT_EQ(j["formats"][0]["format"], "fp24");
+  bool noted = false;
+  for (const auto& n : j["notes"]) noted |= n.get<std::string>().rfind("fp16 is left out", 0) == 0;
+  EXPECT_TRUE(noted) << j["notes"];
+  fs::remove(Path("t.json"));
+  r = RunKdrt(base + " --formats fp16");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("no format to compare"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(Path("t.json")));
+}
+
 // A second run replaces the page of the first, and leaves no temporaries.
 TEST_F(TradeCli, HtmlPageIsWrittenWholeAndReplacesAnEarlierPage) {
   const std::string cmd = "trade gen:room:300 --res 16x16 --formats fp32,fp16 --no-area -q --html " + Path("page");
