@@ -203,8 +203,9 @@ def value_key(v):
         return (1, 0.0, str(v))
 
 
-def plot(path, title, xs_label, series):
-    """A plain SVG line plot: series = [(label, [(x, y), ...])], in legend order."""
+def plot(path, title, xs_label, series, y_label="cycles per ray"):
+    """A plain SVG line plot: series = [(label, [(x, y), ...])], in legend order; x values are categories,
+    equally spaced in value_key order (scripts/scaling.sh uses it too)."""
     W, H, L, R, T, B = 560, 340, 60, 170, 30, 45
     xs = sorted({x for _, pts in series for x, _ in pts}, key=value_key)
     ys = [y for _, pts in series for _, y in pts]
@@ -225,8 +226,8 @@ def plot(path, title, xs_label, series):
         o.append('<text x="%d" y="%.1f" text-anchor="end">%.3g</text>' % (L - 6, ly(y) + 4, y))
         o.append('<line x1="%d" y1="%.1f" x2="%d" y2="%.1f" stroke="#ddd"/>' % (L, ly(y), W - R, ly(y)))
     o.append('<text x="%d" y="%d" text-anchor="middle">%s</text>' % ((L + W - R) / 2, H - 10, xs_label))
-    o.append('<text x="14" y="%d" transform="rotate(-90 14 %d)" text-anchor="middle">cycles per ray</text>' %
-             ((T + H - B) / 2, (T + H - B) / 2))
+    o.append('<text x="14" y="%d" transform="rotate(-90 14 %d)" text-anchor="middle">%s</text>' %
+             ((T + H - B) / 2, (T + H - B) / 2, y_label))
     for i, (label, pts) in enumerate(series):
         c = colors[i % len(colors)]
         pts = sorted(pts, key=lambda p: xi[p[0]])
