@@ -1,6 +1,7 @@
 # kdrt top-level targets: thin wrappers, as in lowRISC ibex.
 #   make demo       render the default scene, simulate the RTL core on it and
-#                   compare the hit buffers (installs what is missing)
+#                   compare the hit buffers; then a shaded frame (primary and
+#                   shadow rays) on both, compared byte for byte (installs what is missing)
 #   make test       build and run every test (installs what is missing)
 #   make test-long  the long variants (more random vectors, larger images)
 #   make lint       verilator --lint-only -Wall on the RTL
@@ -33,7 +34,10 @@ demo: build
 	$(KDRT) render "$$scene" --res $(DEMO_SIM_RES) -q -o out/demo-small.png --hits out/demo-small-hits.exr; \
 	$(KDRT) sim "$$scene" --res $(DEMO_SIM_RES) -o out/demo-sim.png --hits out/demo-sim-hits.exr \
 	  --json out/demo-sim.json; \
-	$(KDRT) compare out/demo-small-hits.exr out/demo-sim-hits.exr
+	$(KDRT) compare out/demo-small-hits.exr out/demo-sim-hits.exr; \
+	$(KDRT) render "$$scene" --res $(DEMO_SIM_RES) --shade -q -o out/demo-shaded.png; \
+	$(KDRT) sim "$$scene" --res $(DEMO_SIM_RES) --shade -o out/demo-sim-shaded.png --json out/demo-sim-shaded.json; \
+	cmp out/demo-shaded.png out/demo-sim-shaded.png && echo "demo: the RTL's shaded frame is the reference's, byte for byte"
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
