@@ -1,5 +1,8 @@
 #include "sim/model_runner.h"
 
+#include "sim/fast_model.h"
+#include "sim/sim_report.h"
+
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/wait.h>
@@ -188,6 +191,39 @@ ModelRun RunModel(const ModelLocation& loc, const CoreConfig& config, const std:
                                                                " hit records for " + std::to_string(rays.size()) + " rays");
   std::ifstream f(report_path);
   out.report = nlohmann::json::parse(f);
+  return out;
+}
+
+ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, const std::vector<Ray>& rays,
+                 const RunOptions& run, Query query) {
+  const ImageView view(image);
+  FastSpec spec;
+  spec.image = &view;
+  spec.rays = &rays;
+  spec.query = query;
+  spec.config = config;
+  spec.memory.size_bytes = run.mem_size ? run.mem_size : uint64_t{1} << config[kAddrWidth];
+  spec.memory.latency = run.mem_latency;
+  spec.memory.bytes_per_cycle = run.mem_bw;
+  spec.timeout = run.timeout;
+  RayCounters totals;
+  RunOutcome outcome = RunFastModel(spec, &totals);
+  ReportInputs ri;
+  ri.loop = "fast";
+  ri.config = config;
+  ri.requirements = DeriveRequirements(view);
+  ri.memory = spec.memory;
+  ri.reference_totals = totals;
+  ri.run = &outcome;
+  ri.rays = rays.size();
+  ri.query = query;
+  ModelRun out;
+  out.report = ReportJson(ri);
+  out.report["cycle_model"] = "fast";
+  out.report["notes"] = {"fast cycle model (sim/fast_model.h): cycles, cache events and thread states are "
+                         "modelled, stall_mem/stack/backpressure and stack overflows are not; calibrated against "
+                         "the RTL (README), not exact"};
+  out.hits = std::move(outcome.result.hits);
   return out;
 }
 

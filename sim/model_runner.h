@@ -44,6 +44,13 @@ ModelRun RunModel(const ModelLocation& location, const CoreConfig& config, const
                   const std::vector<Ray>& rays, const RunOptions& run, const std::string& trace_path,
                   Query query = Query::kClosest);
 
+// The fast cycle model (sim/fast_model.h) on the same image and rays, with
+// `config`'s parameters and `run`'s memory: the same report as a model run
+// ("cycle_model": "fast", and a note of what it does not model); its hits are
+// the reference's.
+ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, const std::vector<Ray>& rays,
+                 const RunOptions& run, Query query = Query::kClosest);
+
 // The memory image the RTL core of `format` reads: the fp32 image packed in
 // the format's width (docs/memory-image.md, "Packed formats"); fp32's is the
 // fp32 image itself.

@@ -43,6 +43,7 @@ struct SimArgs {
   bool strict = false;
   bool which_model = false;  // print the model choice and stop
   bool build_model = false;  // build the model if needed and stop
+  std::string model = "rtl";  // rtl, fast or both
   ShadingArgs shading;
 };
 
@@ -53,6 +54,13 @@ struct PassFailed {
 
 int RunSim(SimArgs args) {
   sim::CheckRunOptions(args.run);
+  if (args.model != "rtl" && args.model != "fast" && args.model != "both") {
+    throw InputError("--model " + args.model + ": expected rtl, fast or both");
+  }
+  if (args.model == "fast" && (!args.run.trace.empty() || args.run.cores > 0 || args.run.systemc)) {
+    throw InputError("--model fast: no waveform, --cores or --systemc (the fast model is one core in plain C++)");
+  }
+  if (args.model == "both" && args.run.cores > 0) throw InputError("--model both: one core only (no --cores)");
   const fp::Format format = fp::ParseFormat(args.format);
   if (format.IsFp64()) {
     throw InputError("--format fp64: no RTL model computes in fp64 (it is the software reference: kdrt render "
@@ -88,7 +96,8 @@ int RunSim(SimArgs args) {
   }
   // Before a model is built or run: --strict refuses here, with nothing written.
   const PrecisionCheck check = CheckPrecision(image, ray_set.rays, format, args.strict, 0);
-  if (!loc.built) sim::BuildModel(choice, loc);
+  const bool rtl = args.model != "fast", fast = args.model != "rtl";
+  if (rtl && !loc.built) sim::BuildModel(choice, loc);
 
   // The waveform is written by the model; it gets a temporary name and is
   // published with the other outputs (or kept alone when the run fails).
@@ -97,8 +106,28 @@ int RunSim(SimArgs args) {
   if (!args.run.trace.empty()) outputs.Add(args.run.trace, [&](const std::string& tmp) { trace_tmp = tmp; });
   args.run.mem_size = choice.mem_size;
   args.run.progress = args.run.progress || (!args.quiet && isatty(STDERR_FILENO));
-  const sim::ModelRun run = sim::RunModel(loc, choice.config, core_image, ray_set.rays, args.run, trace_tmp,
-                                               ray_set.query);
+  // One run of the chosen cycle model(s); with both, the RTL's report with
+  // the fast model's figures and its error beside it.
+  const auto run_model = [&](const std::vector<Ray>& rays, const sim::RunOptions& run_options,
+                             const std::string& trace_path, Query query) {
+    if (!rtl) return sim::RunFast(choice.config, core_image, rays, run_options, query);
+    sim::ModelRun r = sim::RunModel(loc, choice.config, core_image, rays, run_options, trace_path, query);
+    if (r.exit_code != 0) return r;
+    r.report["cycle_model"] = "rtl";
+    if (fast) {
+      const sim::ModelRun f = sim::RunFast(choice.config, core_image, rays, run_options, query);
+      const double rtl_cpr = r.report["cycles_per_ray"], fast_cpr = f.report["cycles_per_ray"];
+      const double rtl_s = r.report["sim_seconds"], fast_s = f.report["sim_seconds"];
+      r.report["fast"] = {{"cycles", f.report["cycles"]},
+                          {"cycles_per_ray", fast_cpr},
+                          {"error", rtl_cpr > 0 ? (fast_cpr - rtl_cpr) / rtl_cpr : 0.0},
+                          {"sim_seconds", fast_s},
+                          {"speedup", fast_s > 0 ? rtl_s / fast_s : 0.0},
+                          {"report", f.report}};
+    }
+    return r;
+  };
+  const sim::ModelRun run = run_model(ray_set.rays, args.run, trace_tmp, ray_set.query);
   if (run.exit_code != 0) {
     if (!trace_tmp.empty() && std::rename(trace_tmp.c_str(), args.run.trace.c_str()) == 0) {
       std::fprintf(stderr, "kdrt sim: waveform up to the failure in %s\n", args.run.trace.c_str());
@@ -125,7 +154,7 @@ int RunSim(SimArgs args) {
       for (const std::string& w : CheckPrecision(image, pass.rays, format, args.strict, 0, pass.name).warnings) {
         report["warnings"].push_back(w);
       }
-      sim::ModelRun r = sim::RunModel(loc, choice.config, core_image, pass.rays, pass_run, "", pass.query);
+      sim::ModelRun r = run_model(pass.rays, pass_run, "", pass.query);
       if (r.exit_code != 0) throw PassFailed{r.exit_code};
       *stats = std::move(r.report);
       return std::move(r.hits);
@@ -148,6 +177,15 @@ int RunSim(SimArgs args) {
   if (!args.quiet) {
     sim::PrintReport(report, stdout);
     sim::PrintCores(report, stdout);
+    if (report.contains("fast")) {
+      const auto& f = report["fast"];
+      std::printf("fast model     %.2f cycles per ray (error %+.2f %% against the RTL), %.3f s (%.0fx the RTL's speed)\n",
+                  f["cycles_per_ray"].get<double>(), 100 * f["error"].get<double>(), f["sim_seconds"].get<double>(),
+                  f["speedup"].get<double>());
+    }
+    if (report.value("cycle_model", "") == "fast") {
+      std::printf("cycle model    fast (C++, not the RTL; hits from the reference model)\n");
+    }
     if (args.shading.On()) sim::PrintPasses(report["passes"], report["frame"], stdout);
     if (!out.empty()) std::printf("image          %s\n", out.c_str());
     if (!args.hits.empty()) std::printf("hit buffer     %s\n", args.hits.c_str());
@@ -181,6 +219,10 @@ Runner AddSimCommand(CLI::App& app) {
                 "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");
   cmd->add_flag("--which-model", args->which_model,
                 "Print the model the scene needs and whether it is built; run nothing");
+  cmd->add_option("--model", args->model,
+                  "Cycle model: rtl (the Verilated core, checked ray by ray), fast (the C++ cycle model, "
+                  "docs/simulator.md; hits from the reference) or both (the RTL's report and the fast model's error)")
+      ->capture_default_str();
   cmd->add_flag("--build-model", args->build_model,
                 "Build the model the scene needs (if it is missing or out of date) and stop; run nothing");
   return [cmd, args]() { return cmd->parsed() ? RunSim(*args) : -1; };

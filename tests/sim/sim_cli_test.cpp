@@ -275,6 +275,55 @@ TEST_F(SimCli, SeveralCoresShareTheL2) {
   ExpectConsistentBreakdown(j4);
 }
 
+// The fast cycle model (sim/fast_model.h) follows the core register by
+// register: the same cycles as the RTL on every generator and preset, the
+// reference's hits, and --model fast alone needs no RTL model.
+class FastModelMatchesRtl : public SimCli, public ::testing::WithParamInterface<SceneCase> {};
+
+TEST_P(FastModelMatchesRtl, SameCyclesAndEvents) {
+  const SceneCase c = GetParam();
+  const std::string common = std::string(c.scene) + " --res 20x20 --format " + c.format;
+  const RunResult both = RunKdrt("sim " + common + " -o " + Path("b.png") + " --json " + Path("b.json"));
+  ASSERT_EQ(both.exit_code, 0) << both.output;
+  const RunResult r = RunKdrt("sim " + common + " --model both -q -o " + Path("x.png") + " --json " + Path("x.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = ReadJson(Path("x.json"));
+  const nlohmann::json& f = j["fast"]["report"];
+  EXPECT_EQ(j["cycle_model"], "rtl");
+  EXPECT_EQ(f["cycle_model"], "fast");
+  EXPECT_EQ(f["cycles"], j["cycles"]);
+  EXPECT_EQ(j["fast"]["error"].get<double>(), 0.0);
+  for (const char* event : {"node_hit", "node_miss", "node_merge", "list_hit", "list_miss", "tri_hit", "tri_miss",
+                            "node_wait", "list_wait", "tri_wait", "busy", "trav_leaf", "ray_in", "ray_out"}) {
+    EXPECT_EQ(f["perf_counts"][event], j["perf_counts"][event]) << event;
+  }
+  EXPECT_EQ(f["thread_states"], j["thread_states"]);
+  EXPECT_EQ(f["memory"]["bytes_read"], j["memory"]["bytes_read"]);
+  const RunResult fast = RunKdrt("sim " + common + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
+  ASSERT_EQ(fast.exit_code, 0) << fast.output;
+  EXPECT_NE(fast.output.find("cycle model    fast"), std::string::npos) << fast.output;
+  EXPECT_EQ(ReadBytes(Path("f.png")), ReadBytes(Path("b.png")));
+  EXPECT_EQ(ReadJson(Path("f.json"))["cycles"], j["cycles"]);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    GeneratedScenes, FastModelMatchesRtl,
+    ::testing::Values(SceneCase{"gen:room:600", "fp32"}, SceneCase{"gen:balls:800", "fp24"},
+                      SceneCase{"gen:rings:800", "bf16"}, SceneCase{"gen:tetra:1000", "fp16"},
+                      SceneCase{"gen:tree:2000", "fp32"}, SceneCase{"gen:gears:1500", "bf16"}),
+    CaseName);
+
+TEST_F(SimCli, FastModelOptionErrors) {
+  for (const std::string& bad : std::vector<std::string>{"--model slow", "--model fast --cores 2",
+                                                          "--model fast --trace " + Path("w.fst"),
+                                "--model both --cores 2"}) {
+    const RunResult r = RunKdrt("sim gen:room:300 --res 8x8 -o " + Path("x.png") + " " + bad);
+    EXPECT_EQ(r.exit_code, 1) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--model"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(FileCount(), 0u);
+}
+
 // Coherent primary rays ask for the same node lines at once: the node cache
 // merges those misses into one fetch (rtl/rt_cache.sv, CacheTargets), and
 // the report counts them.
