@@ -40,7 +40,8 @@ PARAMS = {
 SPEC_KEYS = {"scenes", "formats", "res", "params", "model", "shade"}
 # What each point reports, from `kdrt sim --json`.
 RESULTS = ["rays", "cycles", "cycles_per_ray", "bound_cycles_per_ray", "efficiency", "rays_per_cycle",
-           "bytes_per_ray", "node_hit_rate", "tri_hit_rate", "sim_seconds"]
+           "bytes_per_ray", "node_hit_rate", "tri_hit_rate", "sim_seconds",
+           "fast_cycles_per_ray", "fast_error", "fast_speedup"]  # the last three: model both
 
 
 class SpecError(Exception):
@@ -89,11 +90,8 @@ def load_spec(path):
             raise SpecError("%s: unknown parameter '%s' (known: %s)" % (path, name, ", ".join(PARAMS)))
     models = as_list(spec.get("model", "rtl"), "model", path)
     for m in models:
-        if m == "fast":
-            raise SpecError("%s: model 'fast': the fast cycle model is not built yet (issue 14, part 1); use rtl" %
-                            path)
-        if m != "rtl":
-            raise SpecError("%s: model '%s': expected rtl" % (path, m))
+        if m not in ("rtl", "fast", "both"):
+            raise SpecError("%s: model '%s': expected rtl, fast or both" % (path, m))
     return {
         "scenes": [str(s) for s in as_list(spec["scenes"], "scenes", path)],
         "formats": [str(f) for f in as_list(spec.get("formats", "fp32"), "formats", path)],
@@ -118,7 +116,7 @@ def expand(spec):
 
 
 def sim_args(point):
-    a = ["sim", point["scene"], "--res", point["res"], "--format", point["format"], "-q"]
+    a = ["sim", point["scene"], "--res", point["res"], "--format", point["format"], "--model", point["model"], "-q"]
     for name, flag in PARAMS.items():
         if name in point:
             a += [flag, str(point[name])]
@@ -153,6 +151,8 @@ def build_models(kdrt, points):
     """Builds every RTL model the points need, once each, before dispatch."""
     seen = {}
     for p in points:
+        if p["model"] == "fast":
+            continue
         r = subprocess.run([kdrt] + sim_args(p) + ["--which-model"], capture_output=True, text=True)
         if r.returncode != 0:
             fail("point %s (%s): %s" % (p["id"], " ".join(sim_args(p)), r.stderr.strip()))
@@ -191,6 +191,9 @@ def row_of(point, names, report):
         "node_hit_rate": hit.get("node"),
         "tri_hit_rate": hit.get("tri"),
         "sim_seconds": report.get("sim_seconds"),
+        "fast_cycles_per_ray": report.get("fast", {}).get("cycles_per_ray"),
+        "fast_error": report.get("fast", {}).get("error"),
+        "fast_speedup": report.get("fast", {}).get("speedup"),
     })
     return row
 
@@ -259,7 +262,7 @@ def write_outputs(out, names, points, rows):
     made = 0
     for scene in sorted({r["scene"] for r in rows}):
         mine = [r for r in rows if r["scene"] == scene]
-        varying = [n for n in names + ["format"] if len({str(r[n]) for r in mine}) > 1]
+        varying = [n for n in names + ["format", "model"] if len({str(r[n]) for r in mine}) > 1]
         for name in varying:
             # One line per combination of the other columns that vary.
             others = [n for n in varying if n != name]

@@ -1,5 +1,7 @@
 #include "sim/fast_model.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <deque>
 #include <stdexcept>
@@ -18,17 +20,45 @@ constexpr int PerfBit(std::string_view name) {
   return -1;
 }
 
+// A set of threads (up to 256, rt_core's limit) as bit words.
+class ThreadSet {
+ public:
+  explicit ThreadSet(int n) : n_(n), w_((n + 63) / 64, 0) {}
+  void Clear() { std::fill(w_.begin(), w_.end(), 0); }
+  void Set(int i) { w_[i >> 6] |= uint64_t{1} << (i & 63); }
+  void Reset(int i) { w_[i >> 6] &= ~(uint64_t{1} << (i & 63)); }
+  bool Empty() const {
+    for (uint64_t w : w_) {
+      if (w) return false;
+    }
+    return true;
+  }
+  // The lowest member at or above `from`, or -1.
+  int NextFrom(int from) const {
+    if (from >= n_) return -1;
+    size_t k = static_cast<size_t>(from) >> 6;
+    uint64_t w = w_[k] & (~uint64_t{0} << (from & 63));
+    for (;;) {
+      if (w) return static_cast<int>(k * 64 + __builtin_ctzll(w));
+      if (++k == w_.size()) return -1;
+      w = w_[k];
+    }
+  }
+  int Lowest() const { return NextFrom(0); }
+
+ private:
+  int n_;
+  std::vector<uint64_t> w_;
+};
+
 // rt_rr_arb: the first requester after the last grant; the pointer moves on
 // every grant when ack is set.
 class RrArb {
  public:
   explicit RrArb(int n) : n_(n), last_(n - 1) {}
-  int Pick(const std::vector<uint8_t>& req) const {
-    for (int k = 1; k <= n_; ++k) {
-      const int i = (last_ + k) % n_;
-      if (req[i]) return i;
-    }
-    return -1;
+  int Pick(const ThreadSet& req) const {
+    const int after = req.NextFrom(last_ + 1);
+    return after >= 0 ? after : req.NextFrom(0);
   }
   void Ack(int idx) {
     if (idx >= 0) last_ = idx;
@@ -40,7 +70,8 @@ class RrArb {
 
 // rt_cache at the level of its registers (the header comment of
 // rtl/rt_cache.sv): Eval() is the combinational part of one cycle from the
-// registered state, Commit() the clock edge.
+// registered state, Commit() the clock edge. Miss registers are tracked as
+// bit masks (rt_core allows at most 64): valid, beats left to send, line in.
 class Cache {
  public:
   struct Req {
@@ -52,70 +83,87 @@ class Cache {
   };
 
   Cache(int lines, int line_beats, int mshrs, int targets, bool miss_port)
-      : lines_(lines), beats_(line_beats), targets_(targets), miss_port_(miss_port), line_valid_(lines, 0),
+      : line_mask_(static_cast<uint64_t>(lines) - 1), beats_(line_beats), targets_(targets), miss_port_(miss_port),
+        all_mshrs_(mshrs >= 64 ? ~uint64_t{0} : (uint64_t{1} << mshrs) - 1), line_valid_(lines, 0),
         line_key_(lines, 0), mshr_(mshrs) {}
 
   // Registered outputs, valid before Eval().
   bool resp_valid() const { return hit_valid_ || del_valid_; }
   uint64_t resp_tag() const { return del_valid_ ? del_tag_ : hit_tag_; }
-  bool mem_valid() const { return held_ || PickSending() >= 0; }
+  bool mem_valid() const { return held_ || unsent_ != 0; }
   uint64_t mem_addr() const { return mshr_[SendIdx()].addr + 16u * mshr_[SendIdx()].sent; }
   int mem_id() const { return SendIdx() * 4 + static_cast<int>(mshr_[SendIdx()].sent); }
 
+  // Nothing can happen here until a memory beat arrives or a request comes:
+  // no response shown, no beat to send, no line ready to answer.
+  bool Quiet() const { return !hit_valid_ && !del_valid_ && !held_ && unsent_ == 0 && done_ == 0; }
+
   void Eval(const Req& r1, const Req& r2, bool resp_ready) {
-    c_ = Comb{};
-    c_.r1 = r1;
-    c_.r2 = r2;
-    const int m_count = static_cast<int>(mshr_.size());
-    int free_idx = -1, done_idx = -1, join_idx = -1, join2_idx = -1;
+    c_.out_take = c_.deliver = c_.ready1 = c_.ready2 = c_.accept = c_.accept2 = false;
+    c_.hit = c_.m_take = false;
+    c_.send_valid = mem_valid();
+    c_.send_idx = c_.send_valid ? SendIdx() : -1;
+    if (!r1.valid && !r2.valid && valid_ == 0 && !hit_valid_ && !del_valid_) return;
+    const uint64_t free_mask = all_mshrs_ & ~valid_;
+    const int free_idx = free_mask ? __builtin_ctzll(free_mask) : -1;
+    const int done_idx = done_ ? __builtin_ctzll(done_) : -1;
+    int join_idx = -1, join2_idx = -1;
     bool any_match = false, any_match2 = false;
-    for (int m = 0; m < m_count; ++m) {
+    for (uint64_t v = valid_; v; v &= v - 1) {
+      const int m = __builtin_ctzll(v);
       const Mshr& s = mshr_[m];
-      if (!s.valid) {
-        if (free_idx < 0) free_idx = m;
-        continue;
-      }
-      const bool done = s.got == (1u << beats_) - 1;
-      const bool room = s.cnt < targets_;
-      if (done && done_idx < 0) done_idx = m;
-      if (s.key == r1.key) {
+      const bool joinable = !((done_ >> m) & 1) && s.cnt < targets_;
+      if (r1.valid && s.key == r1.key) {
         any_match = true;
-        if (!done && room && join_idx < 0) join_idx = m;
+        if (joinable && join_idx < 0) join_idx = m;
       }
-      if (s.key == r2.key) {
+      if (r2.valid && s.key == r2.key) {
         any_match2 = true;
-        if (!done && room && join2_idx < 0) join2_idx = m;
+        if (joinable && join2_idx < 0) join2_idx = m;
       }
     }
-    const bool lookup_hit = Present(r1.key), lookup2_hit = Present(r2.key);
+    const bool lookup_hit = r1.valid && Present(r1.key), lookup2_hit = r2.valid && Present(r2.key);
     c_.out_take = resp_valid() && resp_ready;
     const bool hit_free = !hit_valid_ || (c_.out_take && !del_valid_);
     const bool del_free = !del_valid_ || c_.out_take;
     c_.deliver = done_idx >= 0 && del_free && !(hit_valid_ && !del_valid_ && !resp_ready);
     c_.done_idx = done_idx;
-    const bool hit_ok = lookup_hit && hit_free;
-    const bool join_ok = !lookup_hit && join_idx >= 0;
-    const bool alloc_ok = !lookup_hit && !any_match && free_idx >= 0;
-    c_.ready1 = hit_ok || join_ok || alloc_ok;
-    c_.accept = r1.valid && c_.ready1;
-    const bool join2_ok = !lookup2_hit && join2_idx >= 0;
-    const bool alloc2_ok = !lookup2_hit && !any_match2 && free_idx >= 0;
-    c_.ready2 = miss_port_ && !(c_.accept && !lookup_hit) && (join2_ok || alloc2_ok);
-    c_.accept2 = r2.valid && c_.ready2;
-    c_.hit = c_.accept && lookup_hit;
-    c_.m_take = (c_.accept && !lookup_hit) || c_.accept2;
-    c_.m_join = c_.accept2 ? join2_ok : join_ok;
-    c_.m_join_idx = c_.accept2 ? join2_idx : join_idx;
+    if (r1.valid) {
+      const bool hit_ok = lookup_hit && hit_free;
+      const bool join_ok = !lookup_hit && join_idx >= 0;
+      const bool alloc_ok = !lookup_hit && !any_match && free_idx >= 0;
+      c_.ready1 = hit_ok || join_ok || alloc_ok;
+      c_.accept = c_.ready1;
+      if (!c_.ready1) ++ev_.wait;
+      if (!lookup_hit && any_match && join_idx < 0) ++ev_.wait_inflight;
+      if (!lookup_hit && !any_match && free_idx < 0) ++ev_.wait_mshr;
+      c_.hit = c_.accept && lookup_hit;
+      if (c_.accept && !lookup_hit) {
+        c_.m_take = true;
+        c_.m_join = join_ok;
+        c_.m_join_idx = join_idx;
+        c_.m = r1;
+      }
+    }
+    if (r2.valid && miss_port_ && !c_.m_take) {
+      const bool join2_ok = !lookup2_hit && join2_idx >= 0;
+      const bool alloc2_ok = !lookup2_hit && !any_match2 && free_idx >= 0;
+      c_.ready2 = join2_ok || alloc2_ok;
+      c_.accept2 = c_.ready2;
+      if (c_.accept2) {
+        c_.m_take = true;
+        c_.m_join = join2_ok;
+        c_.m_join_idx = join2_idx;
+        c_.m = r2;
+      }
+    }
     c_.free_idx = free_idx;
-    c_.m = c_.accept2 ? r2 : r1;
-    if (c_.hit) ++ev_.hit;
+    if (c_.hit) {
+      ++ev_.hit;
+      c_.hit_tag = r1.tag;
+    }
     if (c_.m_take) ++ev_.miss;
     if (c_.m_take && c_.m_join) ++ev_.merge;
-    if (r1.valid && !c_.ready1) ++ev_.wait;
-    if (r1.valid && !lookup_hit && any_match && join_idx < 0) ++ev_.wait_inflight;
-    if (r1.valid && !lookup_hit && !any_match && free_idx < 0) ++ev_.wait_mshr;
-    c_.send_valid = mem_valid();
-    c_.send_idx = c_.send_valid ? SendIdx() : -1;
   }
   bool ready1() const { return c_.ready1; }
   bool ready2() const { return c_.ready2; }
@@ -133,7 +181,7 @@ class Cache {
     }
     if (c_.hit) {
       hit_valid_ = true;
-      hit_tag_ = c_.r1.tag;
+      hit_tag_ = c_.hit_tag;
     }
     if (c_.m_take) {
       if (c_.m_join) {
@@ -141,26 +189,41 @@ class Cache {
         s.tags.push_back(c_.m.tag);
         ++s.cnt;
       } else {
-        Mshr& s = mshr_[c_.free_idx];
-        s = Mshr{};
-        s.valid = true;
+        const int f = c_.free_idx;
+        Mshr& s = mshr_[f];
         s.key = c_.m.key;
         s.addr = c_.m.addr;
+        s.sent = s.got = 0;
         s.cnt = 1;
-        s.tags = {c_.m.tag};
+        s.out = 0;
+        s.tags.assign(1, c_.m.tag);
+        valid_ |= uint64_t{1} << f;
+        unsent_ |= uint64_t{1} << f;
       }
     }
-    if (mem_taken) ++mshr_[c_.send_idx].sent;
-    if (resp_id >= 0) mshr_[resp_id / 4].got |= 1u << (resp_id % 4);
+    if (mem_taken) {
+      Mshr& s = mshr_[c_.send_idx];
+      if (++s.sent == static_cast<uint32_t>(beats_)) unsent_ &= ~(uint64_t{1} << c_.send_idx);
+    }
+    if (resp_id >= 0) {
+      const int m = resp_id / 4;
+      Mshr& s = mshr_[m];
+      s.got |= 1u << (resp_id % 4);
+      if (s.got == (1u << beats_) - 1) done_ |= uint64_t{1} << m;
+    }
     if (c_.deliver) {
-      Mshr& s = mshr_[c_.done_idx];
+      const int d = c_.done_idx;
+      Mshr& s = mshr_[d];
       del_tag_ = s.tags[s.out];
       ++s.out;
-      const size_t line = s.key % lines_;
+      const size_t line = s.key & line_mask_;
       line_valid_[line] = 1;
       line_key_[line] = s.key;
       del_valid_ = true;
-      if (s.out == s.cnt) s.valid = false;
+      if (s.out == s.cnt) {
+        valid_ &= ~(uint64_t{1} << d);
+        done_ &= ~(uint64_t{1} << d);
+      }
     }
     held_ = c_.send_valid && !mem_taken;
     held_idx_ = c_.send_idx;
@@ -170,37 +233,33 @@ class Cache {
 
  private:
   struct Mshr {
-    bool valid = false;
     uint64_t key = 0, addr = 0;
     uint32_t sent = 0, got = 0;
     int cnt = 0, out = 0;
     std::vector<uint64_t> tags;
   };
   struct Comb {
-    Req r1, r2, m;
+    Req m;
+    uint64_t hit_tag = 0;
     bool out_take = false, deliver = false, ready1 = false, ready2 = false, accept = false, accept2 = false;
     bool hit = false, m_take = false, m_join = false, send_valid = false;
     int done_idx = -1, m_join_idx = -1, free_idx = -1, send_idx = -1;
   };
 
   bool Present(uint64_t key) const {
-    const size_t line = key % lines_;
+    const size_t line = key & line_mask_;
     return line_valid_[line] && line_key_[line] == key;
   }
-  int PickSending() const {
-    for (size_t m = 0; m < mshr_.size(); ++m) {
-      if (mshr_[m].valid && mshr_[m].sent < static_cast<uint32_t>(beats_)) return static_cast<int>(m);
-    }
-    return -1;
-  }
-  int SendIdx() const { return held_ ? held_idx_ : PickSending(); }
+  int SendIdx() const { return held_ ? held_idx_ : __builtin_ctzll(unsent_); }
 
-  size_t lines_;
+  uint64_t line_mask_;
   int beats_, targets_;
   bool miss_port_;
+  uint64_t all_mshrs_;
   std::vector<uint8_t> line_valid_;
   std::vector<uint64_t> line_key_;
   std::vector<Mshr> mshr_;
+  uint64_t valid_ = 0, unsent_ = 0, done_ = 0;  // miss registers: in use, beats to send, line in
   bool hit_valid_ = false, del_valid_ = false, held_ = false;
   uint64_t hit_tag_ = 0, del_tag_ = 0;
   int held_idx_ = 0;
@@ -273,6 +332,9 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
 
   std::vector<Thread> th(threads);
   RrArb fetch_arb(threads), fetch2_arb(threads), exit_arb(threads), out_arb(threads), mem_arb(3);
+  ThreadSet fetching(threads), exiting(threads), done(threads), mreq(3);
+  std::array<uint64_t, 8> in_state{};  // threads per state
+  in_state[kFree] = static_cast<uint64_t>(threads);
   Pipe clip_pipe, trav_pipe, isect_pipe;
   std::deque<Job> jobs;  // rt_list_unit's FIFO: (push cycle + 1) visibility
   std::deque<std::pair<uint64_t, Job>> jobs_in;
@@ -286,11 +348,31 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   const uint32_t* lists = image.lists();
 
   auto node_key = [&](uint32_t node_idx) { return (h.node_offset + layout.NodeBeatOffset(node_idx)) >> 5; };
-  std::vector<uint8_t> req(threads), mreq(3);
   std::vector<int> retired;
   std::vector<State> next(threads);
   uint64_t cycle = 0;
   for (;; ++cycle) {
+    // Cycles in which nothing can change (every thread waits on a pipeline or
+    // the memory, no cache has anything to show or send) are skipped to the
+    // next event; their thread-state and busy counts still accrue.
+    bool quiet = !record_valid && in_state[kFetch] == 0 && in_state[kExit] == 0 && in_state[kDone] == 0 &&
+                 !(in_state[kFree] > 0 && next_ray < rays.size()) && !list_req_valid && jobs.empty() &&
+                 jobs_in.empty() && node.Quiet() && list.Quiet() && tri.Quiet();
+    if (quiet && in_state[kLeaf] > 0) {
+      for (const Thread& t : th) quiet &= !(t.state == kLeaf && t.remaining == 0 && t.outstanding == 0);
+    }
+    if (quiet) {
+      uint64_t next_event = memory.next_ready_cycle();
+      for (const Pipe* pipe : {&clip_pipe, &trav_pipe, &isect_pipe}) {
+        if (!pipe->empty()) next_event = std::min(next_event, pipe->front().first);
+      }
+      if (next_event != UINT64_MAX && next_event > cycle) {
+        const uint64_t skip = next_event - cycle;
+        for (int k = 0; k < 8; ++k) out.result.thread_states[k] += in_state[k] * skip;
+        if (in_state[kFree] != static_cast<uint64_t>(threads)) perf[kBitBusy] += skip;
+        cycle = next_event;
+      }
+    }
     // The memory's beat of this cycle, routed by {cache, register, beat}.
     MemoryResponse resp;
     int resp_cache = -1, resp_id = -1;
@@ -298,13 +380,26 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
       resp_cache = resp.tag >> 8;
       resp_id = resp.tag & 0xFF;
     }
+    // One pass over the threads: the sets the arbiters look at.
+    fetching.Clear();
+    exiting.Clear();
+    done.Clear();
+    int alloc = -1;
     for (int t = 0; t < threads; ++t) {
-      next[t] = th[t].state;
-      ++out.result.thread_states[th[t].state];
+      const State st = th[t].state;
+      next[t] = st;
+      switch (st) {
+        case kFetch: fetching.Set(t); break;
+        case kExit: exiting.Set(t); break;
+        case kDone: done.Set(t); break;
+        case kFree: if (alloc < 0) alloc = t; break;
+        // LEAF: EXIT once the tests issued and returned (registered counts) are both zero.
+        case kLeaf: if (th[t].remaining == 0 && th[t].outstanding == 0) next[t] = kExit; break;
+        default: break;
+      }
     }
-    bool busy = false;
-    for (const Thread& t : th) busy |= t.state != kFree;
-    if (busy) ++perf[kBitBusy];
+    for (int k = 0; k < 8; ++k) out.result.thread_states[k] += in_state[k];
+    if (in_state[kFree] != static_cast<uint64_t>(threads)) ++perf[kBitBusy];
     // A record leaves the core (hit_valid_o): the harness takes it.
     if (record_valid) {
       ++received;
@@ -318,10 +413,6 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     }
 
     // Ray in: the lowest free thread takes the harness's next ray.
-    int alloc = -1;
-    for (int t = 0; t < threads && alloc < 0; ++t) {
-      if (th[t].state == kFree) alloc = t;
-    }
     if (alloc >= 0 && next_ray < rays.size()) {
       th[alloc].ray = static_cast<uint32_t>(next_ray++);
       th[alloc].cursor = 0;
@@ -347,10 +438,9 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     }
 
     // Node fetches: two arbiters, the second offered to the miss-only port.
-    for (int t = 0; t < threads; ++t) req[t] = th[t].state == kFetch;
-    const int f1 = fetch_arb.Pick(req);
-    if (f1 >= 0) req[f1] = 0;
-    const int f2 = fetch2_arb.Pick(req);
+    const int f1 = fetch_arb.Pick(fetching);
+    if (f1 >= 0) fetching.Reset(f1);
+    const int f2 = fetch2_arb.Pick(fetching);
     Cache::Req n1, n2;
     if (f1 >= 0) n1 = {true, node_key(paths[th[f1].ray][th[f1].cursor]), 0, static_cast<uint64_t>(f1)};
     if (f2 >= 0) n2 = {true, node_key(paths[th[f2].ray][th[f2].cursor]), 0, static_cast<uint64_t>(f2)};
@@ -408,31 +498,27 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     }
 
     // The memory arbiter: one beat a cycle, round robin over the caches.
-    mreq[0] = node.mem_valid();
-    mreq[1] = list.mem_valid();
-    mreq[2] = tri.mem_valid();
+    mreq.Clear();
+    if (node.mem_valid()) mreq.Set(0);
+    if (list.mem_valid()) mreq.Set(1);
+    if (tri.mem_valid()) mreq.Set(2);
     const int g = mem_arb.Pick(mreq);
     mem_arb.Ack(g);
     Cache* caches[3] = {&node, &list, &tri};
     if (g >= 0) memory.Request(caches[g]->mem_addr(), static_cast<uint16_t>(g << 8 | caches[g]->mem_id()), cycle);
 
     // Leaf exits and records out.
-    for (int t = 0; t < threads; ++t) req[t] = th[t].state == kExit;
-    const int ex = exit_arb.Pick(req);
+    const int ex = exit_arb.Pick(exiting);
     exit_arb.Ack(ex);
     if (ex >= 0) next[ex] = th[ex].cursor >= paths[th[ex].ray].size() ? kDone : kFetch;
-    for (int t = 0; t < threads; ++t) req[t] = th[t].state == kDone;
-    const int o = out_arb.Pick(req);
+    const int o = out_arb.Pick(done);
     out_arb.Ack(o);
     if (o >= 0) {
       next[o] = kFree;
       record_valid = true;
     }
 
-    // LEAF: counters of tests issued and returned; EXIT once both are zero.
-    for (int t = 0; t < threads; ++t) {
-      if (th[t].state == kLeaf && th[t].remaining == 0 && th[t].outstanding == 0) next[t] = kExit;
-    }
+    // LEAF: the counters of tests issued and returned.
     if (tri_fire) {
       --th[tri_thread].remaining;
       ++th[tri_thread].outstanding;
@@ -460,7 +546,13 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
       jobs.push_back(jobs_in.front().second);
       jobs_in.pop_front();
     }
-    for (int t = 0; t < threads; ++t) th[t].state = next[t];
+    for (int t = 0; t < threads; ++t) {
+      if (th[t].state != next[t]) {
+        --in_state[th[t].state];
+        ++in_state[next[t]];
+        th[t].state = next[t];
+      }
+    }
   }
   out.result.cycles = cycle + 1;
   const Cache::Events* ev[3] = {&node.events(), &list.events(), &tri.events()};

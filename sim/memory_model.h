@@ -75,6 +75,9 @@ class MemoryModel : public MemoryPort {
   uint64_t requests() const { return requests_; }
   size_t outstanding() const override { return queue_.size(); }
   uint64_t max_outstanding() const { return max_outstanding_; }
+  // The first cycle in which Respond() can return a beat (UINT64_MAX when
+  // nothing is outstanding): the fast model skips the cycles before it.
+  uint64_t next_ready_cycle() const { return queue_.empty() ? UINT64_MAX : queue_.front().ready_cycle; }
 
  private:
   struct Pending {

@@ -75,9 +75,9 @@ PY
 
 # Spec errors: named, exit 1, nothing written.
 printf 'scenes: [gen:room:300]\nparams:\n  no_such_param: [1]\n' > "$work/bad1.yaml"
-printf 'scenes: [gen:room:300]\nmodel: fast\n' > "$work/bad2.yaml"
+printf 'scenes: [gen:room:300]\nmodel: turbo\n' > "$work/bad2.yaml"
 printf 'scenes: [gen:room:300\n' > "$work/bad3.yaml"
-for b in bad1:no_such_param bad2:"fast cycle model is not built" bad3:"not valid YAML"; do
+for b in bad1:no_such_param bad2:"expected rtl, fast or both" bad3:"not valid YAML"; do
   f=${b%%:*}
   want=${b#*:}
   set +e
