@@ -316,7 +316,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST_F(SimCli, FastModelOptionErrors) {
   for (const std::string& bad : std::vector<std::string>{"--model slow", "--model fast --cores 2",
                                                           "--model fast --trace " + Path("w.fst"),
-                                "--model both --cores 2"}) {
+                                "--model both --cores 2", "--model fast --stack-depth 2 --allow-overflow"}) {
     const RunResult r = RunKdrt("sim gen:room:300 --res 8x8 -o " + Path("x.png") + " " + bad);
     EXPECT_EQ(r.exit_code, 1) << bad << ": " << r.output;
     EXPECT_NE(r.output.find("--model"), std::string::npos) << r.output;
