@@ -332,7 +332,12 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
 
   std::vector<Thread> th(threads);
   RrArb fetch_arb(threads), fetch2_arb(threads), exit_arb(threads), out_arb(threads), mem_arb(3);
-  ThreadSet fetching(threads), exiting(threads), done(threads), mreq(3);
+  ThreadSet mreq(3);
+  std::vector<ThreadSet> in_set(8, ThreadSet(threads));  // the threads in each state
+  for (int t = 0; t < threads; ++t) in_set[kFree].Set(t);
+  // The state changes of this cycle, applied at the clock edge (one per thread at most).
+  std::vector<std::pair<int, State>> moves;
+  const auto Move = [&moves](int t, State to_state) { moves.emplace_back(t, to_state); };
   std::array<uint64_t, 8> in_state{};  // threads per state
   in_state[kFree] = static_cast<uint64_t>(threads);
   Pipe clip_pipe, trav_pipe, isect_pipe;
@@ -349,7 +354,6 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
 
   auto node_key = [&](uint32_t node_idx) { return (h.node_offset + layout.NodeBeatOffset(node_idx)) >> 5; };
   std::vector<int> retired;
-  std::vector<State> next(threads);
   uint64_t cycle = 0;
   for (;; ++cycle) {
     // Cycles in which nothing can change (every thread waits on a pipeline or
@@ -380,23 +384,11 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
       resp_cache = resp.tag >> 8;
       resp_id = resp.tag & 0xFF;
     }
-    // One pass over the threads: the sets the arbiters look at.
-    fetching.Clear();
-    exiting.Clear();
-    done.Clear();
-    int alloc = -1;
-    for (int t = 0; t < threads; ++t) {
-      const State st = th[t].state;
-      next[t] = st;
-      switch (st) {
-        case kFetch: fetching.Set(t); break;
-        case kExit: exiting.Set(t); break;
-        case kDone: done.Set(t); break;
-        case kFree: if (alloc < 0) alloc = t; break;
-        // LEAF: EXIT once the tests issued and returned (registered counts) are both zero.
-        case kLeaf: if (th[t].remaining == 0 && th[t].outstanding == 0) next[t] = kExit; break;
-        default: break;
-      }
+    // The registered states, as sets (kept up to date by the moves below).
+    int alloc = in_set[kFree].Lowest();
+    // LEAF: EXIT once the tests issued and returned (registered counts) are both zero.
+    for (int t = in_set[kLeaf].Lowest(); t >= 0; t = in_set[kLeaf].NextFrom(t + 1)) {
+      if (th[t].remaining == 0 && th[t].outstanding == 0) Move(t, kExit);
     }
     for (int k = 0; k < 8; ++k) out.result.thread_states[k] += in_state[k];
     if (in_state[kFree] != static_cast<uint64_t>(threads)) ++perf[kBitBusy];
@@ -416,7 +408,7 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     if (alloc >= 0 && next_ray < rays.size()) {
       th[alloc].ray = static_cast<uint32_t>(next_ray++);
       th[alloc].cursor = 0;
-      next[alloc] = kSetup;
+      Move(alloc, kSetup);
       clip_pipe.emplace_back(cycle + lat_clip, alloc);
       ++perf[kBitRayIn];
     }
@@ -424,10 +416,10 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     while (!clip_pipe.empty() && clip_pipe.front().first == cycle) {
       const int t = clip_pipe.front().second;
       clip_pipe.pop_front();
-      next[t] = paths[th[t].ray].empty() ? kDone : kFetch;
+      Move(t, paths[th[t].ray].empty() ? kDone : kFetch);
     }
     while (!trav_pipe.empty() && trav_pipe.front().first == cycle) {
-      next[trav_pipe.front().second] = kFetch;
+      Move(trav_pipe.front().second, kFetch);
       trav_pipe.pop_front();
     }
     // Retired tests (isect_valid) this cycle.
@@ -438,9 +430,11 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     }
 
     // Node fetches: two arbiters, the second offered to the miss-only port.
+    ThreadSet& fetching = in_set[kFetch];
     const int f1 = fetch_arb.Pick(fetching);
     if (f1 >= 0) fetching.Reset(f1);
     const int f2 = fetch2_arb.Pick(fetching);
+    if (f1 >= 0) fetching.Set(f1);
     Cache::Req n1, n2;
     if (f1 >= 0) n1 = {true, node_key(paths[th[f1].ray][th[f1].cursor]), 0, static_cast<uint64_t>(f1)};
     if (f2 >= 0) n2 = {true, node_key(paths[th[f2].ray][th[f2].cursor]), 0, static_cast<uint64_t>(f2)};
@@ -451,24 +445,24 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     node.Eval(n1, n2, true);
     fetch_arb.Ack(f1);
     fetch2_arb.Ack(f2);
-    if (node.accept1()) next[f1] = kWaitNode;
-    if (node.accept2()) next[f2] = kWaitNode;
+    if (node.accept1()) Move(f1, kWaitNode);
+    if (node.accept2()) Move(f2, kWaitNode);
     if (node_fire) {
       Thread& t = th[node_tag];
       const img::Node n = image.node(paths[t.ray][t.cursor]);
       ++t.cursor;
       if (!n.IsLeaf()) {
-        next[node_tag] = kTrav;
+        Move(node_tag, kTrav);
         trav_pipe.emplace_back(cycle + lat_trav, node_tag);
         ++perf[kBitTravBusy];
       } else {
         ++perf[kBitTravLeaf];
         if (n.Count() > 0) {
-          next[node_tag] = kLeaf;
+          Move(node_tag, kLeaf);
           t.remaining = n.Count();
           jobs_in.emplace_back(cycle + 1, Job{node_tag, n.FirstEntry(), n.Count()});
         } else {
-          next[node_tag] = kExit;
+          Move(node_tag, kExit);
         }
       }
     }
@@ -508,13 +502,13 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     if (g >= 0) memory.Request(caches[g]->mem_addr(), static_cast<uint16_t>(g << 8 | caches[g]->mem_id()), cycle);
 
     // Leaf exits and records out.
-    const int ex = exit_arb.Pick(exiting);
+    const int ex = exit_arb.Pick(in_set[kExit]);
     exit_arb.Ack(ex);
-    if (ex >= 0) next[ex] = th[ex].cursor >= paths[th[ex].ray].size() ? kDone : kFetch;
-    const int o = out_arb.Pick(done);
+    if (ex >= 0) Move(ex, th[ex].cursor >= paths[th[ex].ray].size() ? kDone : kFetch);
+    const int o = out_arb.Pick(in_set[kDone]);
     out_arb.Ack(o);
     if (o >= 0) {
-      next[o] = kFree;
+      Move(o, kFree);
       record_valid = true;
     }
 
@@ -546,13 +540,14 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
       jobs.push_back(jobs_in.front().second);
       jobs_in.pop_front();
     }
-    for (int t = 0; t < threads; ++t) {
-      if (th[t].state != next[t]) {
-        --in_state[th[t].state];
-        ++in_state[next[t]];
-        th[t].state = next[t];
-      }
+    for (const auto& [t, to_state] : moves) {
+      in_set[th[t].state].Reset(t);
+      in_set[to_state].Set(t);
+      --in_state[th[t].state];
+      ++in_state[to_state];
+      th[t].state = to_state;
     }
+    moves.clear();
   }
   out.result.cycles = cycle + 1;
   const Cache::Events* ev[3] = {&node.events(), &list.events(), &tri.events()};
