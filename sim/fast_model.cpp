@@ -6,19 +6,11 @@
 #include <deque>
 #include <stdexcept>
 #include <string>
-#include <string_view>
 
 #include "trace/tracer.h"
 
 namespace kdrt::sim {
 namespace {
-
-constexpr int PerfBit(std::string_view name) {
-  for (int b = 0; b < kPerfBits; ++b) {
-    if (std::string_view(kPerfFields[b].name) == name) return b;
-  }
-  return -1;
-}
 
 // A set of threads (up to 256, rt_core's limit) as bit words.
 class ThreadSet {
@@ -27,12 +19,6 @@ class ThreadSet {
   void Clear() { std::fill(w_.begin(), w_.end(), 0); }
   void Set(int i) { w_[i >> 6] |= uint64_t{1} << (i & 63); }
   void Reset(int i) { w_[i >> 6] &= ~(uint64_t{1} << (i & 63)); }
-  bool Empty() const {
-    for (uint64_t w : w_) {
-      if (w) return false;
-    }
-    return true;
-  }
   // The lowest member at or above `from`, or -1.
   int NextFrom(int from) const {
     if (from >= n_) return -1;
@@ -55,7 +41,7 @@ class ThreadSet {
 // every grant when ack is set.
 class RrArb {
  public:
-  explicit RrArb(int n) : n_(n), last_(n - 1) {}
+  explicit RrArb(int n) : last_(n - 1) {}
   int Pick(const ThreadSet& req) const {
     const int after = req.NextFrom(last_ + 1);
     return after >= 0 ? after : req.NextFrom(0);
@@ -65,7 +51,7 @@ class RrArb {
   }
 
  private:
-  int n_, last_;
+  int last_;
 };
 
 // rt_cache at the level of its registers (the header comment of
@@ -270,9 +256,6 @@ class Cache {
 constexpr int kBitRayIn = PerfBit("ray_in"), kBitRayOut = PerfBit("ray_out"), kBitBusy = PerfBit("busy"),
               kBitTravBusy = PerfBit("trav_busy"), kBitTravLeaf = PerfBit("trav_leaf"),
               kBitListBusy = PerfBit("list_busy"), kBitIsectBusy = PerfBit("isect_busy");
-static_assert(kBitRayIn >= 0 && kBitRayOut >= 0 && kBitBusy >= 0 && kBitTravBusy >= 0 && kBitTravLeaf >= 0 &&
-                  kBitListBusy >= 0 && kBitIsectBusy >= 0,
-              "perf_t lost a field the fast model counts");
 
 enum State : uint8_t { kFree, kSetup, kFetch, kWaitNode, kTrav, kLeaf, kExit, kDone };
 
@@ -373,18 +356,21 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   const uint32_t* lists = image.lists();
 
   auto node_key = [&](uint32_t node_idx) { return (h.node_offset + layout.NodeBeatOffset(node_idx)) >> 5; };
-  std::vector<int> retired;
+  std::vector<int> retired, leaf_done;
   uint64_t cycle = 0;
   for (;; ++cycle) {
     // Cycles in which nothing can change (every thread waits on a pipeline or
     // the memory, no cache has anything to show or send) are skipped to the
     // next event; their thread-state and busy counts still accrue.
-    bool quiet = !record_valid && in_state[kFetch] == 0 && in_state[kExit] == 0 && in_state[kDone] == 0 &&
-                 !(in_state[kFree] > 0 && next_ray < rays.size()) && !list_req_valid && jobs.empty() &&
-                 jobs_in.empty() && node.Quiet() && list.Quiet() && tri.Quiet();
-    if (quiet && in_state[kLeaf] > 0) {
-      for (const Thread& t : th) quiet &= !(t.state == kLeaf && t.remaining == 0 && t.outstanding == 0);
+    // LEAF: EXIT once the tests issued and returned (registered counts) are
+    // both zero; skipped cycles change no thread, so this holds after a skip.
+    leaf_done.clear();
+    for (int t = in_set[kLeaf].Lowest(); t >= 0; t = in_set[kLeaf].NextFrom(t + 1)) {
+      if (th[t].remaining == 0 && th[t].outstanding == 0) leaf_done.push_back(t);
     }
+    const bool quiet = !record_valid && in_state[kFetch] == 0 && in_state[kExit] == 0 && in_state[kDone] == 0 &&
+                       !(in_state[kFree] > 0 && next_ray < rays.size()) && leaf_done.empty() && !list_req_valid &&
+                       jobs.empty() && jobs_in.empty() && node.Quiet() && list.Quiet() && tri.Quiet();
     if (quiet) {
       uint64_t next_event = memory.next_ready_cycle();
       for (const Pipe* pipe : {&clip_pipe, &trav_pipe, &isect_pipe}) {
@@ -405,11 +391,8 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
       resp_id = resp.tag & 0xFF;
     }
     // The registered states, as sets (kept up to date by the moves below).
-    int alloc = in_set[kFree].Lowest();
-    // LEAF: EXIT once the tests issued and returned (registered counts) are both zero.
-    for (int t = in_set[kLeaf].Lowest(); t >= 0; t = in_set[kLeaf].NextFrom(t + 1)) {
-      if (th[t].remaining == 0 && th[t].outstanding == 0) Move(t, kExit);
-    }
+    const int alloc = in_set[kFree].Lowest();
+    for (int t : leaf_done) Move(t, kExit);
     for (int k = 0; k < 8; ++k) out.result.thread_states[k] += in_state[k];
     if (in_state[kFree] != static_cast<uint64_t>(threads)) ++perf[kBitBusy];
     // A record leaves the core (hit_valid_o): the harness takes it.

@@ -66,12 +66,12 @@ void SharedL2::Answer(int core, uint64_t addr, uint16_t tag, uint64_t ready) {
 }
 
 void SharedL2::Request(int core, uint64_t addr, uint16_t tag, uint64_t cycle) {
-  const uint64_t size = memory_.config().size_bytes;
-  if (addr % kBeatBytes != 0 || addr >= size || size - addr < kBeatBytes) {
-    throw MemoryError("core " + std::to_string(core) + " asked the L2 for " + std::to_string(addr) + " (cycle " +
-                      std::to_string(cycle) + "): misaligned or outside the modelled memory of " +
-                      std::to_string(size) + " bytes");
+  try {
+    memory_.CheckRequest(addr, cycle);
+  } catch (const MemoryError& e) {
+    throw MemoryError("core " + std::to_string(core) + " through the L2: " + e.what());
   }
+  const uint64_t size = memory_.config().size_bytes;
   ++stats_.requests;
   const uint64_t line = addr / config_.line_bytes;
   if (Lookup(line)) {

@@ -37,7 +37,7 @@ void MemoryModel::LoadImage(const std::vector<uint8_t>& bytes) {
   image_ = bytes;
 }
 
-void MemoryModel::Request(uint64_t addr, uint16_t tag, uint64_t cycle) {
+void MemoryModel::CheckRequest(uint64_t addr, uint64_t cycle) const {
   if (addr % kBeatBytes != 0) {
     throw MemoryError("memory request at " + Hex(addr) + " (cycle " + std::to_string(cycle) +
                       ") is not 16-byte aligned");
@@ -46,6 +46,10 @@ void MemoryModel::Request(uint64_t addr, uint16_t tag, uint64_t cycle) {
     throw MemoryError("memory request at " + Hex(addr) + " (cycle " + std::to_string(cycle) +
                       ") lies outside the modelled memory of " + std::to_string(config_.size_bytes) + " bytes");
   }
+}
+
+void MemoryModel::Request(uint64_t addr, uint16_t tag, uint64_t cycle) {
+  CheckRequest(addr, cycle);
   queue_.push_back(Pending{cycle + config_.latency, addr, tag});
   ++requests_;
   max_outstanding_ = std::max<uint64_t>(max_outstanding_, queue_.size());

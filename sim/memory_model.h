@@ -65,6 +65,9 @@ class MemoryModel : public MemoryPort {
   // A read of the 16 bytes at `addr` (16-byte aligned), accepted in cycle
   // `cycle`. Throws MemoryError outside the memory or when misaligned.
   void Request(uint64_t addr, uint16_t tag, uint64_t cycle) override;
+  // Request()'s check alone: throws MemoryError for a read outside the memory
+  // or not 16-byte aligned (a cache in front of the memory checks with it).
+  void CheckRequest(uint64_t addr, uint64_t cycle) const;
 
   // Advances to cycle `cycle` (call once per cycle, increasing) and returns
   // true with the beat to drive on the response port this cycle, if any.

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "common/ray.h"
@@ -11,6 +12,15 @@
 #include "sim/perf_layout.h"  // generated from perf_t in rtl/kdrt_pkg.sv
 
 namespace kdrt::sim {
+
+// The bit of perf_o named `name`; in a constant expression, a name that is
+// not a perf_t field of rtl/kdrt_pkg.sv is a compile-time error.
+constexpr int PerfBit(std::string_view name) {
+  for (int b = 0; b < kPerfBits; ++b) {
+    if (name == kPerfFields[b].name) return b;
+  }
+  throw "no such perf_t field in rtl/kdrt_pkg.sv";
+}
 
 // rt_thread_fsm's states in the order of its state_e encoding (state_o).
 inline constexpr const char* kThreadStateNames[8] = {"free", "setup", "fetch", "wait_node",

@@ -120,12 +120,18 @@ class ScL2 : public sc_core::sc_module {
   std::vector<std::unique_ptr<CorePort>> ports_;
 };
 
+// What every SystemC run starts with: no banner or info messages from the
+// kernel, and the memory image as the memory module loads it.
+std::vector<uint8_t> QuietKernelAndImage(const RunSpec& spec) {
+  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
+  sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
+  return std::vector<uint8_t>(spec.image->data(), spec.image->data() + spec.image->size());
+}
+
 }  // namespace
 
 SystemOutcome RunSystemCCores(const RunSpec& spec, int cores, const L2Config& l2_config, size_t chunk) {
-  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
-  sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
-  const std::vector<uint8_t> image(spec.image->data(), spec.image->data() + spec.image->size());
+  const std::vector<uint8_t> image = QuietKernelAndImage(spec);
   sc_core::sc_clock clock("clock", 10, sc_core::SC_NS);
   ScMemory memory("memory", spec.memory, image);
   ScL2 l2("l2", l2_config, memory.model(), image, cores);
@@ -157,9 +163,7 @@ SystemOutcome RunSystemCCores(const RunSpec& spec, int cores, const L2Config& l2
 }
 
 RunOutcome RunSystemC(const RunSpec& spec) {
-  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
-  sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
-  const std::vector<uint8_t> image(spec.image->data(), spec.image->data() + spec.image->size());
+  const std::vector<uint8_t> image = QuietKernelAndImage(spec);
   sc_core::sc_clock clock("clock", 10, sc_core::SC_NS);
   ScMemory memory("memory", spec.memory, image);
   ScCore core("core", spec);

@@ -7,20 +7,13 @@
 namespace kdrt::sim {
 namespace {
 
-// The bit of perf_o named `name` (a compile-time error if there is none).
-constexpr int Bit(std::string_view name) {
-  for (int b = 0; b < kPerfBits; ++b) {
-    if (name == kPerfFields[b].name) return b;
-  }
-  throw "no such perf_t field in rtl/kdrt_pkg.sv";
-}
-constexpr int kTravBusy = Bit("trav_busy"), kListBusy = Bit("list_busy"), kIsectBusy = Bit("isect_busy");
-constexpr int kNodeHit = Bit("node_hit"), kNodeMiss = Bit("node_miss"), kListHit = Bit("list_hit");
-constexpr int kListMiss = Bit("list_miss"), kTriHit = Bit("tri_hit"), kTriMiss = Bit("tri_miss");
-constexpr int kStallMem = Bit("stall_mem"), kStallStack = Bit("stall_stack");
-constexpr int kStallBackpressure = Bit("stall_backpressure");
-constexpr int kBusy = Bit("busy"), kTravStall = Bit("trav_stall"), kIsectStall = Bit("isect_stall");
-constexpr int kHitStall = Bit("hit_stall");
+constexpr int kTravBusy = PerfBit("trav_busy"), kListBusy = PerfBit("list_busy"), kIsectBusy = PerfBit("isect_busy");
+constexpr int kNodeHit = PerfBit("node_hit"), kNodeMiss = PerfBit("node_miss"), kListHit = PerfBit("list_hit");
+constexpr int kListMiss = PerfBit("list_miss"), kTriHit = PerfBit("tri_hit"), kTriMiss = PerfBit("tri_miss");
+constexpr int kStallMem = PerfBit("stall_mem"), kStallStack = PerfBit("stall_stack");
+constexpr int kStallBackpressure = PerfBit("stall_backpressure");
+constexpr int kBusy = PerfBit("busy"), kTravStall = PerfBit("trav_stall"), kIsectStall = PerfBit("isect_stall");
+constexpr int kHitStall = PerfBit("hit_stall");
 
 double Ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
 
@@ -29,11 +22,11 @@ double Ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
 // register full or answering) and on a free miss register; the rest are hits
 // waiting for the response register. Merges are counts.
 nlohmann::json CacheWaits(const std::array<uint64_t, kPerfBits>& p, const std::string& cache, double cycles) {
-  auto at = [&](const std::string& field) { return static_cast<double>(p[Bit(field)]); };
+  auto at = [&](const std::string& field) { return static_cast<double>(p[PerfBit(field)]); };
   return {{"wait", Ratio(at(cache + "_wait"), cycles)},
           {"wait_in_flight", Ratio(at(cache + "_wait_inflight"), cycles)},
           {"wait_no_mshr", Ratio(at(cache + "_wait_mshr"), cycles)},
-          {"merged_misses", p[Bit(cache + "_merge")]}};
+          {"merged_misses", p[PerfBit(cache + "_merge")]}};
 }
 
 // The share of thread-cycles in each state.

@@ -39,13 +39,14 @@ struct RenderArgs {
   ShadingArgs shading;
 };
 
-nlohmann::json PassStats(const TraceStats& ts) {
+// Nodes, leaves and tests per ray of a traced batch.
+nlohmann::json PerRay(const TraceStats& ts) {
   const double n = static_cast<double>(ts.rays);
-  return {{"rays", ts.rays},
-          {"hits", ts.hits},
-          {"trace_seconds", ts.seconds},
-          {"per_ray",
-           {{"nodes", ts.totals.nodes / n}, {"leaves", ts.totals.leaves / n}, {"tri_tests", ts.totals.tri_tests / n}}}};
+  return {{"nodes", ts.totals.nodes / n}, {"leaves", ts.totals.leaves / n}, {"tri_tests", ts.totals.tri_tests / n}};
+}
+
+nlohmann::json PassStats(const TraceStats& ts) {
+  return {{"rays", ts.rays}, {"hits", ts.hits}, {"trace_seconds", ts.seconds}, {"per_ray", PerRay(ts)}};
 }
 
 int Run(const RenderArgs& args) {
@@ -96,8 +97,7 @@ int Run(const RenderArgs& args) {
       {"trace_seconds", ts.seconds},
       {"threads", to.threads},
       {"mrays_per_second", ts.seconds > 0 ? n / ts.seconds * 1e-6 : 0.0},
-      {"per_ray",
-       {{"nodes", ts.totals.nodes / n}, {"leaves", ts.totals.leaves / n}, {"tri_tests", ts.totals.tri_tests / n}}},
+      {"per_ray", PerRay(ts)},
       {"totals", {{"nodes", ts.totals.nodes}, {"leaves", ts.totals.leaves}, {"tri_tests", ts.totals.tri_tests}}},
       {"precision", check.requirement.Json()},
       {"warnings", check.warnings},
