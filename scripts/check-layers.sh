@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Checks that library dependencies run one way:
-#   tools -> trade -> sim -> setup -> trace -> accel -> scene, fp, common
+#   tools -> trade -> sim -> setup -> structures -> trace -> accel -> scene, fp, common
 # (sw/setup may use trace, accel, scene, fp and common; the simulator may use
 # setup and below; nothing but sw/tools uses sw/tools). Prints each include
 # that goes the wrong way; exit status 1 if there is one. Run by ctest.
@@ -19,7 +19,8 @@ check() {  # check <dirs...> -- <forbidden include prefixes...>
 check sw/trade -- tools
 check sim -- tools trade
 check sw/setup -- tools trade sim
-check sw/trace sw/accel sw/scene sw/fp sw/common scenes -- tools trade sim setup
+check sw/structures -- tools trade sim setup
+check sw/trace sw/accel sw/scene sw/fp sw/common scenes -- tools trade sim setup structures
 check sw/accel sw/scene sw/fp sw/common scenes -- trace
 if [ "$bad" -ne 0 ]; then
   echo "check-layers: the includes above go against the dependency order (docs/simulator.md)" >&2

@@ -9,8 +9,6 @@
 
 namespace kdrt {
 
-namespace {
-
 Scene LoadOrGenerate(const SceneSpec& spec) {
   if (spec.scene.rfind("gen:", 0) == 0) {
     const std::string rest = spec.scene.substr(4);
@@ -31,14 +29,29 @@ Scene LoadOrGenerate(const SceneSpec& spec) {
   return LoadScene(spec.scene, lo);
 }
 
-}  // namespace
-
 PreparedScene PrepareScene(const SceneSpec& spec) {
   const auto start = std::chrono::steady_clock::now();
   Scene scene = LoadOrGenerate(spec);
   const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  PreparedScene p = PrepareScene(std::move(scene), spec.build);
+  PreparedScene p = PrepareScene(std::move(scene), spec);
   p.load_seconds = load_seconds;
+  return p;
+}
+
+PreparedScene PrepareScene(Scene scene, const SceneSpec& spec) {
+  if (IsKdTree(spec.accel)) {  // the split rule is spec.build.method
+    PreparedScene p = PrepareScene(std::move(scene), spec.build);
+    p.accel = AccelKindOf(spec.build.method);
+    return p;
+  }
+  CheckStructureOptions(spec.structure);
+  BuildOptions single_leaf = spec.build;
+  single_leaf.method = SplitMethod::kMidpoint;
+  single_leaf.max_depth = 0;
+  PreparedScene p = PrepareScene(std::move(scene), single_leaf);
+  p.accel = spec.accel;
+  p.structure_input = std::make_unique<StructureInput>(MakeStructureInput(ImageView(p.image)));
+  p.structure = BuildStructure(spec.accel, *p.structure_input, spec.structure);
   return p;
 }
 
@@ -70,6 +83,20 @@ nlohmann::json TreeStatsJson(const TreeStats& s) {
 
 void PrintTreeStats(const PreparedScene& p) {
   const TreeStats& s = p.tree.stats;
+  if (p.structure) {
+    const StructureStats& st = p.structure->stats();
+    std::printf("scene          %s\n", p.scene.source.c_str());
+    std::printf("triangles      %zu (%u degenerate, left out)\n", p.scene.triangles.size(), s.degenerate_triangles);
+    std::printf("structure      %s: %llu cells/nodes, %llu holding triangles, depth %u\n", AccelKindName(p.accel),
+                static_cast<unsigned long long>(st.nodes), static_cast<unsigned long long>(st.leaves), st.max_depth);
+    std::printf("references     %llu (%.2f per triangle), longest list %u\n",
+                static_cast<unsigned long long>(st.references),
+                p.structure_input->ids.empty() ? 0.0 : double(st.references) / p.structure_input->ids.size(),
+                st.max_leaf_prims);
+    std::printf("memory         %.2f MB (without the triangles)\n", st.memory_bytes / 1e6);
+    std::printf("build time     %.3f s\n", st.build_seconds);
+    return;
+  }
   std::printf("scene          %s\n", p.scene.source.c_str());
   std::printf("triangles      %zu (%u degenerate, left out of the tree)\n", p.scene.triangles.size(),
               s.degenerate_triangles);

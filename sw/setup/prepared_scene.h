@@ -12,6 +12,7 @@
 
 #include "accel/kdtree.h"
 #include "scene/scene.h"
+#include "structures/structure.h"
 #include "trace/frame.h"
 
 namespace kdrt {
@@ -20,6 +21,10 @@ struct SceneSpec {
   std::string scene;        // a file or gen:NAME:SIZE
   int sphere_segments = 0;  // 0: loader default
   BuildOptions build;
+  // A kd-tree split rule (the tree in the memory image, build.method) or a
+  // software structure (structures/structure.h) built beside the image.
+  AccelKind accel = AccelKind::kSah;
+  StructureOptions structure;
 };
 
 struct PreparedScene {
@@ -28,12 +33,22 @@ struct PreparedScene {
   KdTree tree;         // built over the scene in the frame
   std::vector<uint8_t> image;
   double load_seconds = 0;
+  // For a software structure: the image holds the triangles under a
+  // single-leaf tree (nothing traces it), and the structure is built over
+  // them. Held by pointer: the structure keeps the input's address.
+  std::unique_ptr<StructureInput> structure_input;
+  std::unique_ptr<Structure> structure;
+  AccelKind accel = AccelKind::kSah;
 };
 
+// Loads (or generates) the scene alone.
+Scene LoadOrGenerate(const SceneSpec& spec);
 // Loads (or generates) the scene, builds the tree and the memory image.
 PreparedScene PrepareScene(const SceneSpec& spec);
 // The tree and the memory image of a scene already in memory.
 PreparedScene PrepareScene(Scene scene, const BuildOptions& build);
+// The same with spec's choice of structure (spec.scene is not read).
+PreparedScene PrepareScene(Scene scene, const SceneSpec& spec);
 
 nlohmann::json TreeStatsJson(const TreeStats& s);
 void PrintTreeStats(const PreparedScene& p);

@@ -17,6 +17,7 @@
 #include "trace/images.h"
 #include "trace/output_file.h"
 #include "trace/rays_file.h"
+#include "structures/structure_tracer.h"
 #include "trace/tracer.h"
 
 namespace kdrt::cli {
@@ -39,14 +40,33 @@ struct RenderArgs {
   ShadingArgs shading;
 };
 
-// Nodes, leaves and tests per ray of a traced batch.
-nlohmann::json PerRay(const TraceStats& ts) {
+// Nodes, leaves and tests per ray of a traced batch (and the tests the
+// mailboxes saved, for the structures that have them).
+nlohmann::json PerRay(const AccelTotals& ts, bool mailbox) {
   const double n = static_cast<double>(ts.rays);
-  return {{"nodes", ts.totals.nodes / n}, {"leaves", ts.totals.leaves / n}, {"tri_tests", ts.totals.tri_tests / n}};
+  nlohmann::json j = {{"nodes", ts.nodes / n}, {"leaves", ts.leaves / n}, {"tri_tests", ts.tri_tests / n}};
+  if (mailbox) j["mailbox_hits"] = ts.mailbox_hits / n;
+  return j;
 }
 
-nlohmann::json PassStats(const TraceStats& ts) {
-  return {{"rays", ts.rays}, {"hits", ts.hits}, {"trace_seconds", ts.seconds}, {"per_ray", PerRay(ts)}};
+nlohmann::json PassStats(const AccelTotals& ts, bool mailbox) {
+  return {{"rays", ts.rays}, {"hits", ts.hits}, {"trace_seconds", ts.seconds}, {"per_ray", PerRay(ts, mailbox)}};
+}
+
+// One batch through the kd-tree image or the software structure.
+std::vector<Hit> TraceBatch(const PreparedScene& p, const ImageView& traced, const std::vector<Ray>& rays,
+                            const TraceOptions& options, AccelTotals* totals) {
+  if (p.structure) return TraceStructureRays(*p.structure, p.frame, rays, options, totals);
+  TraceStats ts;
+  std::vector<Hit> hits = TraceRays(traced, rays, options, &ts);
+  *totals = AccelTotals{};
+  totals->rays = ts.rays;
+  totals->hits = ts.hits;
+  totals->seconds = ts.seconds;
+  totals->nodes = ts.totals.nodes;
+  totals->leaves = ts.totals.leaves;
+  totals->tri_tests = ts.totals.tri_tests;
+  return hits;
 }
 
 int Run(const RenderArgs& args) {
@@ -54,7 +74,13 @@ int Run(const RenderArgs& args) {
   if (args.image_format != "native" && args.image_format != "fp32") {
     throw InputError("--image-format " + args.image_format + ": expected native or fp32");
   }
+  TraceOptions to;
+  to.format = format;
+  to.isect = ParseIsectMethod(args.isect);
+  to.threads = args.threads;
+  if (!IsKdTree(args.scene.accel)) CheckStructureTraceOptions(to);  // before the build
   PreparedScene p = PrepareScene(args.scene);
+  const bool mailbox = p.structure && p.structure->uses_mailbox();
   const ImageView image(p.image);
   // The image the tracer reads: the format's own packed image (splits and
   // vertices rounded once, as a load from the fp32 image rounds them: the
@@ -68,27 +94,24 @@ int Run(const RenderArgs& args) {
   const std::vector<Ray>& rays = ray_set.rays;
   const int width = ray_set.width, height = ray_set.height;
 
-  TraceOptions to;
-  to.format = format;
-  to.isect = ParseIsectMethod(args.isect);
-  to.threads = args.threads;
   to.query = ray_set.query;
   to.progress = !args.quiet && isatty(STDERR_FILENO) && rays.size() >= 1000000;
   const PrecisionCheck check = CheckPrecision(image, rays, to.format, args.strict, args.threads);
-  TraceStats ts;
-  const std::vector<Hit> hits = TraceRays(traced, rays, to, &ts);
+  AccelTotals ts;
+  const std::vector<Hit> hits = TraceBatch(p, traced, rays, to, &ts);
 
   const double n = static_cast<double>(rays.size());
   nlohmann::json j = {
       {"command", "render"},
       {"scene", p.scene.source},
       {"triangles", p.scene.triangles.size()},
-      {"accel", SplitMethodName(args.scene.build.method)},
+      {"accel", AccelKindName(p.accel)},
       {"isect", IsectMethodName(to.isect)},
       {"format", args.format},
       {"width", width},
       {"height", height},
-      {"tree", TreeStatsJson(p.tree.stats)},
+      {p.structure ? "structure" : "tree",
+       p.structure ? StructureStatsJson(p.structure->stats()) : TreeStatsJson(p.tree.stats)},
       {"image_format", fp::Format{layout.e, layout.m}.Name()},
       {"image_bytes", traced.size()},
       {"fp32_image_bytes", p.image.size()},
@@ -97,8 +120,8 @@ int Run(const RenderArgs& args) {
       {"trace_seconds", ts.seconds},
       {"threads", to.threads},
       {"mrays_per_second", ts.seconds > 0 ? n / ts.seconds * 1e-6 : 0.0},
-      {"per_ray", PerRay(ts)},
-      {"totals", {{"nodes", ts.totals.nodes}, {"leaves", ts.totals.leaves}, {"tri_tests", ts.totals.tri_tests}}},
+      {"per_ray", PerRay(ts, mailbox)},
+      {"totals", {{"nodes", ts.nodes}, {"leaves", ts.leaves}, {"tri_tests", ts.tri_tests}}},
       {"precision", check.requirement.Json()},
       {"warnings", check.warnings},
   };
@@ -115,12 +138,12 @@ int Run(const RenderArgs& args) {
       TraceOptions po = to;
       po.query = pass.query;
       po.progress = false;
-      TraceStats ps;
-      std::vector<Hit> h = TraceRays(traced, pass.rays, po, &ps);
-      *stats = PassStats(ps);
+      AccelTotals ps;
+      std::vector<Hit> h = TraceBatch(p, traced, pass.rays, po, &ps);
+      *stats = PassStats(ps, mailbox);
       return h;
     };
-    frame = TraceShadedFrame(p.scene, args.shading.options, rays, hits, PassStats(ts), trace);
+    frame = TraceShadedFrame(p.scene, args.shading.options, rays, hits, PassStats(ts, mailbox), trace);
     j["passes"] = PassesJson(frame.passes);
   }
 
@@ -135,13 +158,17 @@ int Run(const RenderArgs& args) {
     PrintTreeStats(p);
     std::printf("format         %s, %s test (minimal format %s)\n", args.format.c_str(), IsectMethodName(to.isect),
                 check.requirement.MinimalFormat().c_str());
-    std::printf("memory image   %zu bytes (%s", traced.size(), fp::Format{layout.e, layout.m}.Name().c_str());
-    if (!layout.IsFp32()) std::printf("; the fp32 image: %zu", p.image.size());
-    std::printf(")\n");
+    if (!p.structure) {
+      std::printf("memory image   %zu bytes (%s", traced.size(), fp::Format{layout.e, layout.m}.Name().c_str());
+      if (!layout.IsFp32()) std::printf("; the fp32 image: %zu", p.image.size());
+      std::printf(")\n");
+    }
     std::printf("rays           %llu (%dx%d), %llu hits (%.1f %%)\n", static_cast<unsigned long long>(ts.rays), width,
                 height, static_cast<unsigned long long>(ts.hits), 100.0 * ts.hits / n);
-    std::printf("per ray        %.2f nodes, %.2f leaves, %.2f triangle tests\n", ts.totals.nodes / n,
-                ts.totals.leaves / n, ts.totals.tri_tests / n);
+    std::printf("per ray        %.2f %s, %.2f leaves, %.2f triangle tests", ts.nodes / n,
+                p.structure ? "cells/nodes" : "nodes", ts.leaves / n, ts.tri_tests / n);
+    if (mailbox) std::printf(", %.2f tests saved by the mailboxes", ts.mailbox_hits / n);
+    std::printf("\n");
     std::printf("trace time     %.3f s, %.2f Mrays/s\n", ts.seconds, ts.seconds > 0 ? n / ts.seconds * 1e-6 : 0.0);
     for (size_t k = 1; k < frame.passes.size(); ++k) {
       const TracedPass& tp = frame.passes[k];
@@ -169,7 +196,7 @@ int Run(const RenderArgs& args) {
 Runner AddRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Trace a scene with the software reference tracer");
-  AddSceneOptions(*cmd, args->scene);
+  AddSceneOptions(*cmd, args->scene, /*structures=*/true);
   cmd->add_option("--res", args->res, "Image resolution WxH (default: the scene's, else 512x512)");
   cmd->add_option("-o,--output", args->out, "Image file (.png, .ppm, .exr; default: <scene>.png)");
   cmd->add_option("--hits", args->hits, "EXR hit buffer with channels t, prim, u, v");

@@ -20,5 +20,6 @@ Runner AddCompareCommand(CLI::App& app);
 Runner AddExtremesCommand(CLI::App& app);
 Runner AddTradeCommand(CLI::App& app);
 Runner AddSweepCommand(CLI::App& app);
+Runner AddCompareAccelCommand(CLI::App& app);
 
 }  // namespace kdrt::cli

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
       kdrt::cli::AddExtremesCommand(app),
       kdrt::cli::AddTradeCommand(app),
       kdrt::cli::AddSweepCommand(app),
+      kdrt::cli::AddCompareAccelCommand(app),
   };
   try {
     try {

@@ -4,17 +4,45 @@
 
 namespace kdrt::cli {
 
-void AddSceneOptions(CLI::App& cmd, SceneSpec& spec) {
+void AddSceneOptions(CLI::App& cmd, SceneSpec& spec, bool structures) {
   BuildOptions& b = spec.build;
   cmd.add_option("scene", spec.scene,
                  "Scene file (.nff, .obj, .ply, .off) or gen:NAME:SIZE for a procedural scene "
                  "(see `kdrt gen --help`)")
       ->required();
-  // ParseSplitMethod's InputError names the bad value (exit status 1).
-  cmd.add_option_function<std::string>(
-         "--accel", [&b](const std::string& name) { b.method = ParseSplitMethod(name); },
-         "kd-tree split method: sah, median or midpoint")
-      ->default_str(SplitMethodName(b.method));
+  // The parsers' InputError names the bad value (exit status 1).
+  if (structures) {
+    cmd.add_option_function<std::string>(
+           "--accel",
+           [&spec](const std::string& name) {
+             spec.accel = ParseAccelKind(name);
+             if (IsKdTree(spec.accel)) spec.build.method = SplitMethodOf(spec.accel);
+           },
+           "Acceleration structure: a kd-tree (sah, median, midpoint: the memory image the hardware reads) or a "
+           "software structure of the reference tracer (grid, hgrid, octree, bvh; fp32 and fp64 only)")
+        ->default_str(SplitMethodName(b.method));
+    cmd.add_option("--grid-density", spec.structure.grid_density,
+                   "Uniform grid resolution: cells per triangle (the lecture's n^3 = d |O|)")
+        ->capture_default_str();
+    cmd.add_option("--hgrid-density", spec.structure.hgrid_density,
+                   "Hierarchical grid: cells per triangle of the top level and of each sub-grid")
+        ->capture_default_str();
+  } else {
+    cmd.add_option_function<std::string>(
+           "--accel",
+           [&b](const std::string& name) {
+             for (const char* software : {"grid", "hgrid", "octree", "bvh"}) {
+               if (name == software) {
+                 throw InputError("--accel " + name + ": this command reads the kd-tree the hardware reads (sah, "
+                                  "median or midpoint); the software structures are for kdrt render and kdrt "
+                                  "compare-accel");
+               }
+             }
+             b.method = ParseSplitMethod(name);
+           },
+           "kd-tree split method: sah, median or midpoint")
+        ->default_str(SplitMethodName(b.method));
+  }
   cmd.add_option("--max-depth", b.max_depth, "Maximum tree depth (-1: round(8 + 1.3 log2 N))")->capture_default_str();
   cmd.add_option("--max-leaf", b.max_leaf_prims, "Make a leaf at this many triangles or fewer")->capture_default_str();
   cmd.add_option("--isect-cost", b.isect_cost, "SAH cost of a triangle test")->capture_default_str();

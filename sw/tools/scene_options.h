@@ -10,7 +10,10 @@
 
 namespace kdrt::cli {
 
-void AddSceneOptions(CLI::App& cmd, SceneSpec& spec);
+// `structures`: --accel also takes the software structures (grid, hgrid,
+// octree, bvh) and --grid-density is offered; otherwise --accel names a
+// kd-tree split rule only (the hardware reads a kd-tree).
+void AddSceneOptions(CLI::App& cmd, SceneSpec& spec, bool structures = false);
 
 // --shade, --ao, --bounce, --seed, --write-rays (kdrt render and kdrt sim).
 struct ShadingArgs {

@@ -12,6 +12,12 @@ bool SameBits(const Hit& a, const Hit& b) {
          fp::BitsOf(a.v) == fp::BitsOf(b.v);
 }
 
+bool IsTie(const Hit& a, const Hit& b) {
+  if (!a.IsHit() || !b.IsHit() || a.prim == b.prim) return false;
+  const int64_t ta = fp::BitsOf(a.t), tb = fp::BitsOf(b.t);  // t >= 0: the encodings order like the values
+  return (ta > tb ? ta - tb : tb - ta) <= kTieUlps;
+}
+
 std::string FloatText(float f) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.9g (0x%08" PRIx32 ")", static_cast<double>(f), fp::BitsOf(f));

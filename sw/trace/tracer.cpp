@@ -1,13 +1,10 @@
 #include "trace/tracer.h"
 
-#include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <cstdio>
-#include <thread>
 
 #include "common/error.h"
 #include "fp/ftz.h"
+#include "trace/ray_pool.h"
 #include "trace/traversal.h"
 
 namespace kdrt {
@@ -53,46 +50,18 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
                            TraceStats* stats, std::vector<RayCounters>* per_ray) {
   std::vector<Hit> hits(rays.size());
   std::vector<RayCounters> counters(rays.size());
-  int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::max(1, std::min<int>(threads, static_cast<int>(rays.size() / 256 + 1)));
-
-  // Rays are handed out in chunks from a shared counter; every ray's result
-  // goes to its own slot, so the output is independent of the thread count.
-  constexpr size_t kChunk = 256;
-  std::atomic<size_t> next{0};
-  std::atomic<size_t> done{0};
-  auto worker = [&]() {
+  const auto start = std::chrono::steady_clock::now();
+  RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {
     WithArith(options.format, [&](const auto& a) {
-      for (;;) {
-        const size_t begin = next.fetch_add(kChunk);
-        if (begin >= rays.size()) break;
-        const size_t end = std::min(rays.size(), begin + kChunk);
+      size_t begin, end;
+      while (next_chunk(&begin, &end)) {
         for (size_t i = begin; i < end; ++i) {
           hits[i] = ToHit(a, TraceRay(a, image, rays[i], options.isect, options.query, &counters[i]));
         }
-        done.fetch_add(end - begin);
       }
       return 0;
     });
-  };
-  const auto start = std::chrono::steady_clock::now();
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  if (options.progress) {
-    std::thread progress_thread([&]() {
-      while (done.load() < rays.size()) {
-        std::fprintf(stderr, "\r  traced %zu / %zu rays", done.load(), rays.size());
-        std::this_thread::sleep_for(std::chrono::milliseconds(500));
-      }
-      std::fprintf(stderr, "\r  traced %zu / %zu rays\n", rays.size(), rays.size());
-    });
-    worker();
-    for (std::thread& t : pool) t.join();
-    progress_thread.join();
-  } else {
-    worker();
-    for (std::thread& t : pool) t.join();
-  }
+  });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (stats) {

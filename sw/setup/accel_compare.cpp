@@ -1,0 +1,146 @@
+#include "setup/accel_compare.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "setup/ray_set.h"
+#include "trace/hit_compare.h"
+#include "trace/memory_image.h"
+
+namespace kdrt {
+namespace {
+
+AccelTotals FromTraceStats(const TraceStats& ts) {
+  AccelTotals t;
+  t.rays = ts.rays;
+  t.hits = ts.hits;
+  t.seconds = ts.seconds;
+  t.nodes = ts.totals.nodes;
+  t.leaves = ts.totals.leaves;
+  t.tri_tests = ts.totals.tri_tests;
+  return t;
+}
+
+// Counts the records that differ from the reference: ties (another triangle
+// at the same t, within kTieUlps) apart from real mismatches.
+void CompareHits(const std::vector<Hit>& reference, const std::vector<Hit>& hits, AccelRow* row) {
+  for (size_t i = 0; i < hits.size(); ++i) {
+    if (SameBits(reference[i], hits[i])) continue;
+    ++(IsTie(reference[i], hits[i]) ? row->ties : row->mismatches);
+  }
+}
+
+// Traces `repeat` times and keeps the fastest run's time (the work is the
+// same every time).
+template <class TraceFn>
+std::vector<Hit> Timed(int repeat, AccelTotals* totals, TraceFn&& trace) {
+  std::vector<Hit> hits;
+  double fastest = 0;
+  for (int k = 0; k < std::max(1, repeat); ++k) {
+    hits = trace(totals);
+    if (k == 0 || totals->seconds < fastest) fastest = totals->seconds;
+  }
+  totals->seconds = fastest;
+  return hits;
+}
+
+}  // namespace
+
+AccelComparison CompareAccels(const std::string& scene_name, const AccelCompareOptions& options) {
+  TraceOptions to;
+  to.format = options.format;
+  to.threads = options.threads;
+  CheckStructureTraceOptions(to);
+  CheckStructureOptions(options.spec.structure);
+  SceneSpec spec = options.spec;
+  spec.scene = scene_name;
+  const Scene scene = LoadOrGenerate(spec);
+  const RaySet ray_set = MakeRays(scene, "", "", options.res);
+
+  AccelComparison c;
+  c.scene = scene.source;
+  c.triangles = scene.triangles.size();
+  c.width = ray_set.width;
+  c.height = ray_set.height;
+
+  // The SAH kd-tree comes first: its image feeds the other structures and
+  // its hits are the reference.
+  BuildOptions sah_build = spec.build;
+  sah_build.method = SplitMethod::kSah;
+  const PreparedScene sah = PrepareScene(scene, sah_build);
+  const ImageView sah_image(sah.image);
+  const std::vector<Hit> reference = TraceRays(sah_image, ray_set.rays, to);
+  const StructureInput input = MakeStructureInput(sah_image);
+
+  for (AccelKind kind : options.kinds) {
+    if (options.progress) std::fprintf(stderr, "  %s: %s...\n", c.scene.c_str(), AccelKindName(kind));
+    AccelRow row;
+    row.kind = kind;
+    std::vector<Hit> hits;
+    if (IsKdTree(kind)) {
+      BuildOptions build = spec.build;
+      build.method = SplitMethodOf(kind);
+      const PreparedScene p = kind == AccelKind::kSah ? PreparedScene{} : PrepareScene(scene, build);
+      const PreparedScene& tree = kind == AccelKind::kSah ? sah : p;
+      const ImageView image(tree.image);
+      row.build_seconds = tree.tree.stats.build_seconds;
+      row.memory_bytes = uint64_t{image.header().node_count} * img::kNodeBytes +
+                         uint64_t{image.header().list_count} * sizeof(uint32_t);
+      row.nodes_built = tree.tree.stats.nodes;
+      row.references = tree.tree.stats.references;
+      hits = Timed(options.repeat, &row.totals, [&](AccelTotals* totals) {
+        TraceStats ts;
+        std::vector<Hit> h = TraceRays(image, ray_set.rays, to, &ts);
+        *totals = FromTraceStats(ts);
+        return h;
+      });
+    } else {
+      const std::unique_ptr<Structure> s = BuildStructure(kind, input, spec.structure);
+      row.build_seconds = s->stats().build_seconds;
+      row.memory_bytes = s->stats().memory_bytes;
+      row.nodes_built = s->stats().nodes;
+      row.references = s->stats().references;
+      row.mailbox = s->uses_mailbox();
+      hits = Timed(options.repeat, &row.totals, [&](AccelTotals* totals) {
+        return TraceStructureRays(*s, sah.frame, ray_set.rays, to, totals);
+      });
+    }
+    CompareHits(reference, hits, &row);
+    c.rows.push_back(row);
+  }
+  double fastest = 0;
+  for (const AccelRow& r : c.rows) {
+    if (r.totals.seconds > 0 && (fastest == 0 || r.totals.seconds < fastest)) fastest = r.totals.seconds;
+  }
+  for (AccelRow& r : c.rows) r.time_ratio = fastest > 0 ? r.totals.seconds / fastest : 0.0;
+  return c;
+}
+
+nlohmann::json AccelComparisonJson(const AccelComparison& c) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const AccelRow& r : c.rows) {
+    const double n = std::max<double>(1.0, static_cast<double>(r.totals.rays));
+    nlohmann::json j = {
+        {"structure", AccelKindName(r.kind)},
+        {"build_seconds", r.build_seconds},
+        {"memory_bytes", r.memory_bytes},
+        {"nodes", r.nodes_built},
+        {"references", r.references},
+        {"refs_per_triangle", c.triangles ? double(r.references) / c.triangles : 0.0},
+        {"rays", r.totals.rays},
+        {"hits", r.totals.hits},
+        {"trace_seconds", r.totals.seconds},
+        {"mrays_per_second", r.Mrays()},
+        {"time_ratio_to_best", r.time_ratio},
+        {"per_ray",
+         {{"nodes", r.totals.nodes / n}, {"leaves", r.totals.leaves / n}, {"tri_tests", r.totals.tri_tests / n}}},
+        {"mismatches", r.mismatches},
+        {"ties", r.ties},
+    };
+    j["per_ray"]["mailbox_hits"] = r.mailbox ? nlohmann::json(r.totals.mailbox_hits / n) : nlohmann::json(nullptr);
+    rows.push_back(j);
+  }
+  return {{"scene", c.scene}, {"triangles", c.triangles}, {"width", c.width}, {"height", c.height}, {"rows", rows}};
+}
+
+}  // namespace kdrt
