@@ -27,6 +27,7 @@
 
 #include "common/error.h"
 #include "structures/structure.h"
+#include "structures/tri_box.h"
 
 namespace kdrt::grid {
 
@@ -169,71 +170,6 @@ inline Resolution ResolutionForBox(const float lo[3], const float hi[3], size_t 
 
 // ---------------------------------------------------------------------------
 // Binning.
-
-// The separating-axis test of Akenine-Moller 2001 in double: the triangle's
-// projections on the axes that can separate it from an axis-aligned box
-// (its normal and the nine edge x box-axis products; the box's own axes are
-// the caller's box range test), computed once per triangle.
-class TriangleBoxTest {
- public:
-  explicit TriangleBoxTest(const img::TriangleRecord& t) {
-    double v[3][3];
-    for (int i = 0; i < 3; ++i) {
-      v[0][i] = t.v0[i];
-      v[1][i] = t.v1[i];
-      v[2][i] = t.v2[i];
-    }
-    double e[3][3];
-    for (int i = 0; i < 3; ++i) {
-      e[0][i] = v[1][i] - v[0][i];
-      e[1][i] = v[2][i] - v[1][i];
-      e[2][i] = v[0][i] - v[2][i];
-    }
-    int k = 0;
-    SetAxis(k++, e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
-            e[0][0] * e[1][1] - e[0][1] * e[1][0], v);
-    for (int j = 0; j < 3; ++j) {
-      const double* d = e[j];
-      SetAxis(k++, 0, -d[2], d[1], v);  // x cross edge
-      SetAxis(k++, d[2], 0, -d[0], v);  // y cross edge
-      SetAxis(k++, -d[1], d[0], 0, v);  // z cross edge
-    }
-  }
-
-  // Whether the triangle meets the box [lo, hi] (its bounding boxes are
-  // known to overlap).
-  bool Overlaps(const double lo[3], const double hi[3]) const {
-    const double c[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
-    const double h[3] = {0.5 * (hi[0] - lo[0]), 0.5 * (hi[1] - lo[1]), 0.5 * (hi[2] - lo[2])};
-    for (const Axis& x : axes_) {
-      const double center = x.a[0] * c[0] + x.a[1] * c[1] + x.a[2] * c[2];
-      const double radius = h[0] * x.abs[0] + h[1] * x.abs[1] + h[2] * x.abs[2];
-      if (x.min > center + radius || x.max < center - radius) return false;
-    }
-    return true;
-  }
-
- private:
-  struct Axis {
-    double a[3], abs[3];
-    double min, max;
-  };
-  void SetAxis(int k, double x, double y, double z, const double v[3][3]) {
-    Axis& ax = axes_[k];
-    ax.a[0] = x;
-    ax.a[1] = y;
-    ax.a[2] = z;
-    for (int i = 0; i < 3; ++i) ax.abs[i] = std::fabs(ax.a[i]);
-    ax.min = std::numeric_limits<double>::infinity();
-    ax.max = -ax.min;
-    for (int i = 0; i < 3; ++i) {
-      const double p = x * v[i][0] + y * v[i][1] + z * v[i][2];
-      ax.min = std::min(ax.min, p);
-      ax.max = std::max(ax.max, p);
-    }
-  }
-  Axis axes_[10];
-};
 
 // Calls fn(local cell index) for every cell of `g` that the triangle meets,
 // each cell widened by `margin` on every side.

@@ -16,10 +16,14 @@
 #include "oracle/embree_scene.h"
 #include "structures/structure.h"
 #include "structures/structure_tracer.h"
-#include "tests/trace/trace_test_util.h"
+#include "tests/structures/structures_test_util.h"
 
 namespace kdrt {
 namespace {
+
+using testing::BruteForceHits;
+using testing::FromTriangles;
+using testing::InsideRays;
 
 struct AgreementCase {
   AccelKind kind;
@@ -29,30 +33,6 @@ struct AgreementCase {
 
 std::string CaseName(const ::testing::TestParamInfo<AgreementCase>& info) {
   return std::string(AccelKindName(info.param.kind)) + "_" + info.param.generator;
-}
-
-// Random rays from points inside the scene box, with tmax from 0 to about
-// the box's diagonal: they start inside cells and end inside cells.
-std::vector<Ray> InsideRays(const Scene& scene, size_t n, uint32_t seed) {
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (const Triangle& t : scene.triangles) {
-    for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
-      lo = glm::min(lo, v);
-      hi = glm::max(hi, v);
-    }
-  }
-  const float diag = glm::length(hi - lo);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
-  std::normal_distribution<float> gauss;
-  std::vector<Ray> rays(n);
-  for (Ray& r : rays) {
-    r.o = lo + (hi - lo) * glm::vec3(u01(rng), u01(rng), u01(rng));
-    r.d = glm::vec3(gauss(rng), gauss(rng), gauss(rng));
-    r.tmin = 0.0f;
-    r.tmax = u01(rng) * diag / std::max(glm::length(r.d), 1e-6f);
-  }
-  return rays;
 }
 
 struct Comparison {

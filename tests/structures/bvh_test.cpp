@@ -19,10 +19,14 @@
 #include "structures/bvh_tree.h"
 #include "structures/structure.h"
 #include "structures/structure_tracer.h"
-#include "tests/trace/trace_test_util.h"
+#include "tests/structures/structures_test_util.h"
 
 namespace kdrt {
 namespace {
+
+using testing::BruteForceHits;
+using testing::FromTriangles;
+using testing::InsideRays;
 
 using testing::Prepared;
 
@@ -42,59 +46,12 @@ struct BvhScene {
   const BvhTree& tree() const { return *BvhTreeOf(*bvh); }
 };
 
-Scene FromTriangles(std::vector<Triangle> triangles) {
-  Scene s;
-  s.triangles = std::move(triangles);
-  s.material.assign(s.triangles.size(), 0);
-  s.colors = {glm::vec3(1.0f)};
-  s.finishes = {Finish{}};
-  return s;
-}
-
-// Random rays from points inside the box of the scene's vertices, tmax up to
-// about the box's diagonal (the agreement test's second ray set).
-std::vector<Ray> InsideRays(const Scene& scene, size_t n, uint32_t seed) {
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (const Triangle& t : scene.triangles) {
-    for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
-      lo = glm::min(lo, v);
-      hi = glm::max(hi, v);
-    }
-  }
-  const float diag = glm::length(hi - lo);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
-  std::normal_distribution<float> gauss;
-  std::vector<Ray> rays(n);
-  for (Ray& r : rays) {
-    r.o = lo + (hi - lo) * glm::vec3(u01(rng), u01(rng), u01(rng));
-    r.d = glm::vec3(gauss(rng), gauss(rng), gauss(rng));
-    r.tmin = 0.0f;
-    r.tmax = u01(rng) * diag / std::max(glm::length(r.d), 1e-6f);
-  }
-  return rays;
-}
-
 TraceOptions Options(const char* format, Query query = Query::kClosest) {
   TraceOptions o;
   o.format = fp::ParseFormat(format);
   o.query = query;
   o.threads = 1;
   return o;
-}
-
-// Every triangle tested for every ray (trace_test_util.h), in the format.
-std::vector<Hit> BruteForceHits(const ImageView& image, const std::vector<Ray>& rays, const char* format) {
-  std::vector<Hit> hits;
-  hits.reserve(rays.size());
-  if (std::string(format) == "fp32") {
-    fp::ScopedFtzDaz ftz;
-    for (const Ray& r : rays) hits.push_back(testing::BruteForce(fp::NativeF32Arith{}, image, r));
-  } else {
-    fp::ScopedIeeeDefault ieee;
-    for (const Ray& r : rays) hits.push_back(testing::BruteForce(fp::NativeF64Arith{}, image, r));
-  }
-  return hits;
 }
 
 size_t CountDifferent(const std::vector<Hit>& a, const std::vector<Hit>& b) {

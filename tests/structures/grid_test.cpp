@@ -18,10 +18,14 @@
 #include "structures/grid_level.h"
 #include "structures/structure.h"
 #include "structures/structure_tracer.h"
-#include "tests/trace/trace_test_util.h"
+#include "tests/structures/structures_test_util.h"
 
 namespace kdrt {
 namespace {
+
+using testing::BruteForceHits;
+using testing::FromTriangles;
+using testing::InsideRays;
 
 constexpr AccelKind kGridKinds[] = {AccelKind::kGrid, AccelKind::kHgrid};
 
@@ -36,43 +40,6 @@ TraceOptions Options(const char* format, Query query = Query::kClosest) {
   o.format = fp::ParseFormat(format);
   o.query = query;
   return o;
-}
-
-// Random rays from points inside the scene box with finite tmax (as the
-// agreement test's), so rays start and end inside cells.
-std::vector<Ray> InsideRays(const Scene& scene, size_t n, uint32_t seed) {
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (const Triangle& t : scene.triangles) {
-    for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
-      lo = glm::min(lo, v);
-      hi = glm::max(hi, v);
-    }
-  }
-  const float diag = glm::length(hi - lo);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
-  std::normal_distribution<float> gauss;
-  std::vector<Ray> rays(n);
-  for (Ray& r : rays) {
-    r.o = lo + (hi - lo) * glm::vec3(u01(rng), u01(rng), u01(rng));
-    r.d = glm::vec3(gauss(rng), gauss(rng), gauss(rng));
-    r.tmax = u01(rng) * diag / std::max(glm::length(r.d), 1e-6f);
-  }
-  return rays;
-}
-
-// Every triangle tested: the exact (t, id) minimum a structure must return.
-std::vector<Hit> BruteForceHits(const ImageView& image, const std::vector<Ray>& rays, const char* format) {
-  std::vector<Hit> hits;
-  hits.reserve(rays.size());
-  if (std::string(format) == "fp32") {
-    fp::ScopedFtzDaz ftz;
-    for (const Ray& r : rays) hits.push_back(testing::BruteForce(fp::NativeF32Arith{}, image, r));
-  } else {
-    fp::ScopedIeeeDefault ieee;
-    for (const Ray& r : rays) hits.push_back(testing::BruteForce(fp::NativeF64Arith{}, image, r));
-  }
-  return hits;
 }
 
 size_t CountDiffering(const std::vector<Hit>& expected, const std::vector<Hit>& got, const std::vector<Ray>& rays,
@@ -200,7 +167,7 @@ void ExpectCompleteLists(const Structure& s, const StructureInput& in, const std
 // binning misses nothing, on every level.
 void ExpectListsHoldOverlaps(const Structure& s, const StructureInput& in, const std::string& what) {
   const grid::Cells& c = CellsOf(s);
-  std::vector<grid::TriangleBoxTest> tests;
+  std::vector<TriangleBoxTest> tests;
   for (uint32_t id : in.ids) tests.emplace_back(in.triangles[id]);
   size_t missing = 0, checked = 0;
   for (const grid::Level& g : c.levels) {

@@ -16,10 +16,14 @@
 #include "structures/octree_tree.h"
 #include "structures/structure.h"
 #include "structures/structure_tracer.h"
-#include "tests/trace/trace_test_util.h"
+#include "tests/structures/structures_test_util.h"
 
 namespace kdrt {
 namespace {
+
+using testing::BruteForceHits;
+using testing::FromTriangles;
+using testing::InsideRays;
 
 using octree::Cell;
 using octree::Node;
@@ -36,15 +40,6 @@ struct OctreeScene {
   ImageView image() const { return p.view(); }
   const Octree& tree() const { return dynamic_cast<const Octree&>(*structure); }
 };
-
-Scene FromTriangles(std::vector<Triangle> triangles) {
-  Scene s;
-  s.triangles = std::move(triangles);
-  s.material.assign(s.triangles.size(), 0);
-  s.colors = {glm::vec3(1.0f)};
-  s.finishes = {Finish{}};
-  return s;
-}
 
 // Calls fn(node, cell, depth) for every stored node, parents first.
 void Walk(const Octree& t, const std::function<void(const Node&, const Cell&, int)>& fn) {
@@ -166,19 +161,6 @@ Work CameraWork(const OctreeScene& s, int res) {
   TraceStructureRays(*s.structure, s.image().frame(), rays, TraceOptions{}, &totals);
   const double n = double(rays.size());
   return Work{totals.nodes / n, totals.tri_tests / n, totals.mailbox_hits / n};
-}
-
-// Brute force over every triangle, the structures' closest-hit rule.
-std::vector<Hit> BruteForceHits(const ImageView& image, const std::vector<Ray>& rays, const fp::Format& format) {
-  std::vector<Hit> hits;
-  if (format.IsFp64()) {
-    fp::ScopedIeeeDefault ieee;
-    for (const Ray& r : rays) hits.push_back(testing::BruteForce(fp::NativeF64Arith{}, image, r));
-  } else {
-    fp::ScopedFtzDaz ftz;
-    for (const Ray& r : rays) hits.push_back(testing::BruteForce(fp::NativeF32Arith{}, image, r));
-  }
-  return hits;
 }
 
 // The octree's hit must be brute force's (both take the smallest t, then the

@@ -127,7 +127,7 @@ TEST_F(Cli, BadInputGivesClearErrorAndNoOutput) {
       {"truncated polygon", "p 4\n0 0 0\n1 0 0\n0 1 0\n", "", "bad.nff"},
       {"empty scene", "# nothing here\n", "", "bad.nff"},
       {"bad format", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--format fp99", "fp99"},
-      {"bad accel", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--accel octree", "octree"},
+      {"bad accel", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--accel quadtree", "quadtree"},
       {"bad res", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--res 12by4", "--res"},
       {"bad isect", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--isect plucker", "plucker"},
       {"missing ray file", "p 3\n0 0 0\n1 0 0\n0 1 0\n", "--rays nonexistent.bin", "nonexistent.bin"},
