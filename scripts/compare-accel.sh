@@ -33,5 +33,5 @@ for p in sys.argv[2:]:
     scenes += json.load(open(p))["scenes"]
 json.dump({"command": "scripts/compare-accel.sh", "scenes": scenes}, open(sys.argv[1], "w"), indent=1)
 PY
-grep -v '^(fp32' "$tmp/tables.md" > "$out.md"
+grep -v -e '^(fp32' -e '^stats ' "$tmp/tables.md" > "$out.md"
 echo "wrote $out.json and $out.md" >&2

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "common/error.h"
 #include "setup/ray_set.h"
 #include "trace/hit_compare.h"
 #include "trace/memory_image.h"
@@ -44,6 +45,39 @@ std::vector<Hit> Timed(int repeat, AccelTotals* totals, TraceFn&& trace) {
   return hits;
 }
 
+// Builds one structure and traces the rays through it, filling the row's
+// build and work figures.
+std::vector<Hit> BuildAndTrace(AccelKind kind, const Scene& scene, const SceneSpec& spec, const PreparedScene& sah,
+                               const StructureInput& input, const std::vector<Ray>& rays, const TraceOptions& to,
+                               const AccelCompareOptions& options, AccelRow* row) {
+  if (IsKdTree(kind)) {
+    BuildOptions build = spec.build;
+    build.method = SplitMethodOf(kind);
+    const PreparedScene p = kind == AccelKind::kSah ? PreparedScene{} : PrepareScene(scene, build);
+    const PreparedScene& tree = kind == AccelKind::kSah ? sah : p;
+    const ImageView image(tree.image);
+    row->build_seconds = tree.tree.stats.build_seconds;
+    row->memory_bytes = uint64_t{image.header().node_count} * img::kNodeBytes +
+                        uint64_t{image.header().list_count} * sizeof(uint32_t);
+    row->nodes_built = tree.tree.stats.nodes;
+    row->references = tree.tree.stats.references;
+    return Timed(options.repeat, &row->totals, [&](AccelTotals* totals) {
+      TraceStats ts;
+      std::vector<Hit> h = TraceRays(image, rays, to, &ts);
+      *totals = FromTraceStats(ts);
+      return h;
+    });
+  }
+  const std::unique_ptr<Structure> s = BuildStructure(kind, input, spec.structure);
+  row->build_seconds = s->stats().build_seconds;
+  row->memory_bytes = s->stats().memory_bytes;
+  row->nodes_built = s->stats().nodes;
+  row->references = s->stats().references;
+  row->mailbox = s->uses_mailbox();
+  return Timed(options.repeat, &row->totals,
+               [&](AccelTotals* totals) { return TraceStructureRays(*s, sah.frame, rays, to, totals); });
+}
+
 }  // namespace
 
 AccelComparison CompareAccels(const std::string& scene_name, const AccelCompareOptions& options) {
@@ -76,41 +110,21 @@ AccelComparison CompareAccels(const std::string& scene_name, const AccelCompareO
     if (options.progress) std::fprintf(stderr, "  %s: %s...\n", c.scene.c_str(), AccelKindName(kind));
     AccelRow row;
     row.kind = kind;
-    std::vector<Hit> hits;
-    if (IsKdTree(kind)) {
-      BuildOptions build = spec.build;
-      build.method = SplitMethodOf(kind);
-      const PreparedScene p = kind == AccelKind::kSah ? PreparedScene{} : PrepareScene(scene, build);
-      const PreparedScene& tree = kind == AccelKind::kSah ? sah : p;
-      const ImageView image(tree.image);
-      row.build_seconds = tree.tree.stats.build_seconds;
-      row.memory_bytes = uint64_t{image.header().node_count} * img::kNodeBytes +
-                         uint64_t{image.header().list_count} * sizeof(uint32_t);
-      row.nodes_built = tree.tree.stats.nodes;
-      row.references = tree.tree.stats.references;
-      hits = Timed(options.repeat, &row.totals, [&](AccelTotals* totals) {
-        TraceStats ts;
-        std::vector<Hit> h = TraceRays(image, ray_set.rays, to, &ts);
-        *totals = FromTraceStats(ts);
-        return h;
-      });
-    } else {
-      const std::unique_ptr<Structure> s = BuildStructure(kind, input, spec.structure);
-      row.build_seconds = s->stats().build_seconds;
-      row.memory_bytes = s->stats().memory_bytes;
-      row.nodes_built = s->stats().nodes;
-      row.references = s->stats().references;
-      row.mailbox = s->uses_mailbox();
-      hits = Timed(options.repeat, &row.totals, [&](AccelTotals* totals) {
-        return TraceStructureRays(*s, sah.frame, ray_set.rays, to, totals);
-      });
+    try {
+      const std::vector<Hit> hits = BuildAndTrace(kind, scene, spec, sah, input, ray_set.rays, to, options, &row);
+      CompareHits(reference, hits, &row);
+    } catch (const InputError& e) {
+      row = AccelRow{};
+      row.kind = kind;
+      row.error = e.what();
     }
-    CompareHits(reference, hits, &row);
     c.rows.push_back(row);
   }
   double fastest = 0;
   for (const AccelRow& r : c.rows) {
-    if (r.totals.seconds > 0 && (fastest == 0 || r.totals.seconds < fastest)) fastest = r.totals.seconds;
+    if (r.error.empty() && r.totals.seconds > 0 && (fastest == 0 || r.totals.seconds < fastest)) {
+      fastest = r.totals.seconds;
+    }
   }
   for (AccelRow& r : c.rows) r.time_ratio = fastest > 0 ? r.totals.seconds / fastest : 0.0;
   return c;
@@ -119,6 +133,10 @@ AccelComparison CompareAccels(const std::string& scene_name, const AccelCompareO
 nlohmann::json AccelComparisonJson(const AccelComparison& c) {
   nlohmann::json rows = nlohmann::json::array();
   for (const AccelRow& r : c.rows) {
+    if (!r.error.empty()) {
+      rows.push_back({{"structure", AccelKindName(r.kind)}, {"error", r.error}});
+      continue;
+    }
     const double n = std::max<double>(1.0, static_cast<double>(r.totals.rays));
     nlohmann::json j = {
         {"structure", AccelKindName(r.kind)},

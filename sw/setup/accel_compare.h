@@ -36,6 +36,7 @@ struct AccelRow {
   uint64_t mismatches = 0;     // hit records that differ from the SAH kd-tree's (a bug)
   uint64_t ties = 0;           // same t bits, another triangle (a tie at equal t)
   double time_ratio = 0;       // trace seconds / the scene's fastest
+  std::string error;           // why the structure could not be built (then nothing else is set)
   double Mrays() const { return totals.seconds > 0 ? totals.rays / totals.seconds * 1e-6 : 0.0; }
 };
 
@@ -47,7 +48,9 @@ struct AccelComparison {
 };
 
 // Throws InputError for a bad scene, resolution or options (a format other
-// than fp32/fp64).
+// than fp32/fp64). A structure that cannot be built on the scene (a kd-tree
+// too large for the memory image) gets a row with its error, not an
+// exception, so the other rows survive.
 AccelComparison CompareAccels(const std::string& scene, const AccelCompareOptions& options);
 
 nlohmann::json AccelComparisonJson(const AccelComparison& c);

@@ -18,6 +18,12 @@ std::string Format(const char* fmt, double v) {
 
 // The cells of one row, in the order of kColumns.
 std::vector<std::string> Cells(const AccelComparison& c, const AccelRow& r) {
+  if (!r.error.empty()) {
+    std::vector<std::string> cells(10, "-");
+    cells[0] = AccelKindName(r.kind);
+    cells[9] = "not built";
+    return cells;
+  }
   const double n = std::max<double>(1.0, static_cast<double>(r.totals.rays));
   return {
       AccelKindName(r.kind),
@@ -80,6 +86,9 @@ std::string AccelTable(const std::vector<AccelComparison>& scenes, bool markdown
         out << "\n";
       }
     }
+    for (const AccelRow& r : c.rows) {
+      if (!r.error.empty()) out << (markdown ? "\n" : "  ") << AccelKindName(r.kind) << " not built: " << r.error << "\n";
+    }
     out << "\n";
   }
   return out.str();
@@ -113,6 +122,9 @@ void WriteAccelHtml(const std::vector<AccelComparison>& scenes, const std::strin
       f << "</tr>\n";
     }
     f << "</table>\n";
+    for (const AccelRow& r : c.rows) {
+      if (!r.error.empty()) f << "<p class=\"bad\">" << AccelKindName(r.kind) << " not built: " << Escape(r.error) << "</p>\n";
+    }
     // Bars: Mrays/s, scaled to the fastest structure of the scene.
     double top = 0;
     for (const AccelRow& r : c.rows) top = std::max(top, r.Mrays());
