@@ -93,6 +93,20 @@ class TreeWriter {
 
   [[noreturn]] void Fail(const std::string& what) const;
 
+  // For assembling a tree built in parts (the parallel SAH build): a node
+  // or a leaf list as it is, with the same limits as above.
+  void AppendNode(const img::Node& n) {
+    NextIndex();
+    nodes_->push_back(n);
+  }
+  void AppendList(const uint32_t* ids, size_t count) {
+    if (lists_->size() + count > UINT32_MAX) Fail("a leaf list does not fit the 30-bit count or the 32-bit list index");
+    lists_->insert(lists_->end(), ids, ids + count);
+  }
+  uint32_t node_count() const { return static_cast<uint32_t>(nodes_->size()); }
+  size_t list_count() const { return lists_->size(); }
+  const std::string& source() const { return source_; }
+
  private:
   uint32_t NextIndex() const {
     if (nodes_->size() > img::kMaxIndex) {
@@ -114,9 +128,11 @@ class TreeWriter {
 bool ClippedTriangleBox(const Triangle& t, const Box& cell, Box* out);
 
 // The builders. Each appends exactly one subtree (the whole tree) to writer.
+// The SAH build runs on `threads` threads (0: all cores); the tree is the
+// serial build's, node for node.
 void BuildSahTree(const BuildInput& input, float traversal_cost, float isect_cost,
                   float empty_bonus, int max_leaf_prims, bool perfect_splits,
-                  TreeWriter* writer);
+                  TreeWriter* writer, int threads = 1);
 void BuildSimpleTree(const BuildInput& input, bool median, int max_leaf_prims,
                      TreeWriter* writer);
 

@@ -47,6 +47,7 @@ void CheckOptions(const BuildOptions& o, const std::string& source) {
     fail("kd-tree max depth must be -1 (automatic) or 0.." + std::to_string(kMaxTreeDepth));
   }
   if (o.max_leaf_prims < 0) fail("kd-tree max leaf primitives must be >= 0");
+  if (o.threads < 0 || o.threads > 1024) fail("kd-tree build threads must be 0 (all cores) .. 1024");
 }
 
 accel::BuildInput Prepare(const Scene& scene, const BuildOptions& options, uint32_t* degenerate) {
@@ -136,7 +137,7 @@ KdTree BuildKdTree(const Scene& scene, const BuildOptions& options) {
     writer.AddLeaf(none);
   } else if (options.method == SplitMethod::kSah) {
     accel::BuildSahTree(input, options.traversal_cost, options.isect_cost, options.empty_bonus,
-                        options.max_leaf_prims, options.perfect_splits, &writer);
+                        options.max_leaf_prims, options.perfect_splits, &writer, options.threads);
   } else {
     accel::BuildSimpleTree(input, options.method == SplitMethod::kMedian, options.max_leaf_prims,
                            &writer);

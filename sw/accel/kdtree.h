@@ -30,6 +30,7 @@ struct BuildOptions {
   int max_depth = -1;        // -1: round(8 + 1.3 log2 N)
   int max_leaf_prims = 1;    // a node with this many or fewer becomes a leaf
   bool perfect_splits = false;  // clip triangles to the node box (SAH only)
+  int threads = 1;           // SAH build threads (0: all cores); the tree does not depend on it
 };
 
 // The deepest tree BuildOptions::max_depth may ask for (InputError above it).

@@ -15,7 +15,10 @@
 //   N_below(s) = #{lo < s} (+ planar at s if they go below)
 //   N_above(s) = #{hi > s} (+ planar at s if they go above)
 #include <algorithm>
+#include <atomic>
 #include <cstring>
+#include <exception>
+#include <thread>
 #include <vector>
 
 #include "accel/build_util.h"
@@ -97,6 +100,20 @@ struct Split {
   uint32_t n_above = 0;
 };
 
+// A subtree left for a worker by the parallel build: its three sorted
+// event lists (copied out of the arena), its cell and where the recursion
+// stood.
+struct DeferredSubtree {
+  std::vector<uint64_t> events[3];
+  uint32_t count = 0;
+  Box cell{};
+  int depth = 0;
+  int bad_refines = 0;
+  uint32_t top_index = 0;  // its placeholder among the top nodes
+  std::vector<img::Node> nodes;  // built by the worker, indices relative
+  std::vector<uint32_t> lists;
+};
+
 class SahBuilder {
  public:
   SahBuilder(const BuildInput& input, float traversal_cost, float isect_cost, float empty_bonus,
@@ -125,6 +142,28 @@ class SahBuilder {
     Build(root, 0, 0);
   }
 
+  // The parallel build's top: nodes at `depth` with at least `min_count`
+  // triangles are not built but copied into `out`, a placeholder node
+  // standing in the tree for each.
+  void DeferAt(int depth, uint32_t min_count, std::vector<DeferredSubtree>* out) {
+    defer_depth_ = depth;
+    defer_min_count_ = min_count;
+    deferred_ = out;
+  }
+
+  // Builds a deferred subtree, its events moved into this builder's arena.
+  void RunSubtree(DeferredSubtree& d) {
+    NodeEvents node;
+    node.cell = d.cell;
+    node.count = d.count;
+    for (int a = 0; a < 3; ++a) {
+      arena_[a] = std::move(d.events[a]);
+      node.begin[a] = 0;
+      node.end[a] = arena_[a].size();
+    }
+    Build(node, d.depth, d.bad_refines);
+  }
+
  private:
   bool IsFlat(uint32_t tri, int axis) const { return (in_.flat[tri] >> axis) & 1u; }
 
@@ -150,6 +189,10 @@ class SahBuilder {
   // cannot see that splitting further often pays off), unless it is hopeless
   // (more than 4x the leaf cost in a node of fewer than 16 triangles).
   void Build(const NodeEvents& node, int depth, int bad_refines) {
+    if (deferred_ && depth == defer_depth_ && node.count >= defer_min_count_) {
+      Defer(node, depth, bad_refines);
+      return;
+    }
     const double leaf_cost = static_cast<double>(isect_cost_) * node.count;
     Split split;
     if (node.count > static_cast<uint32_t>(max_leaf_prims_) && depth < in_.max_depth) {
@@ -176,6 +219,20 @@ class SahBuilder {
     writer_->FinishInner(index, split.axis, FromOrderedBits(split.pos_bits));
     Build(above, depth + 1, bad_refines);
     for (int a = 0; a < 3; ++a) arena_[a].resize(child_start[a]);
+  }
+
+  void Defer(const NodeEvents& node, int depth, int bad_refines) {
+    DeferredSubtree d;
+    for (int a = 0; a < 3; ++a) {
+      d.events[a].assign(arena_[a].begin() + node.begin[a], arena_[a].begin() + node.end[a]);
+    }
+    d.count = node.count;
+    d.cell = node.cell;
+    d.depth = depth;
+    d.bad_refines = bad_refines;
+    d.top_index = writer_->node_count();
+    writer_->AppendNode(img::Node{0, 0});  // the placeholder
+    deferred_->push_back(std::move(d));
   }
 
   void MakeLeaf(const NodeEvents& node) {
@@ -410,16 +467,115 @@ class SahBuilder {
   std::vector<uint64_t> new_below_[3], new_above_[3];
   std::vector<uint64_t> kept_below_, kept_above_;
   std::vector<uint32_t> leaf_ids_;
+
+  int defer_depth_ = -1;
+  uint32_t defer_min_count_ = 0;
+  std::vector<DeferredSubtree>* deferred_ = nullptr;
 };
+
+// Below this many triangles a subtree is built where it stands: copying its
+// events out costs about what building it does.
+constexpr uint32_t kMinDeferredTriangles = 2048;
+
+// Appends the top of the tree and its built subtrees to `writer` in the
+// serial build's order (depth first, each subtree where its placeholder
+// stands, leaf lists in leaf order), moving child and list indices.
+void Assemble(const std::vector<img::Node>& top, const std::vector<uint32_t>& top_lists,
+              const std::vector<DeferredSubtree>& subtrees, TreeWriter* writer) {
+  // Where each top node lands: a placeholder takes its subtree's size.
+  std::vector<uint64_t> final_index(top.size() + 1);
+  std::vector<int> subtree_at(top.size(), -1);
+  for (size_t k = 0; k < subtrees.size(); ++k) subtree_at[subtrees[k].top_index] = static_cast<int>(k);
+  final_index[0] = writer->node_count();
+  for (size_t i = 0; i < top.size(); ++i) {
+    final_index[i + 1] = final_index[i] + (subtree_at[i] >= 0 ? subtrees[subtree_at[i]].nodes.size() : 1);
+  }
+  if (final_index[top.size()] > img::kMaxIndex + uint64_t{1}) {
+    writer->Fail("kd-tree has more than 2^30 nodes, too many for the memory image");
+  }
+  for (size_t i = 0; i < top.size(); ++i) {
+    if (subtree_at[i] >= 0) {
+      const DeferredSubtree& d = subtrees[subtree_at[i]];
+      const uint32_t node_base = static_cast<uint32_t>(final_index[i]);
+      const uint32_t list_base = static_cast<uint32_t>(writer->list_count());
+      for (const img::Node& n : d.nodes) {
+        if (n.IsLeaf()) {
+          writer->AppendNode(n.Count() == 0 ? n : img::Node{n.word0 + list_base, n.word1});
+        } else {
+          writer->AppendNode(img::Node{n.word0, ((n.AboveChild() + node_base) << 2) | (n.word1 & 3u)});
+        }
+      }
+      writer->AppendList(d.lists.data(), d.lists.size());
+      continue;
+    }
+    const img::Node& n = top[i];
+    if (n.IsLeaf()) {
+      const uint32_t list_base = static_cast<uint32_t>(writer->list_count());
+      if (n.Count() > 0) writer->AppendList(top_lists.data() + n.FirstEntry(), n.Count());
+      writer->AppendNode(n.Count() == 0 ? n : img::Node{list_base, n.word1});
+    } else {
+      const uint32_t above = static_cast<uint32_t>(final_index[n.AboveChild()]);
+      writer->AppendNode(img::Node{n.word0, (above << 2) | (n.word1 & 3u)});
+    }
+  }
+}
 
 }  // namespace
 
 void BuildSahTree(const BuildInput& input, float traversal_cost, float isect_cost,
                   float empty_bonus, int max_leaf_prims, bool perfect_splits,
-                  TreeWriter* writer) {
-  SahBuilder(input, traversal_cost, isect_cost, empty_bonus, max_leaf_prims, perfect_splits,
-             writer)
-      .Run();
+                  TreeWriter* writer, int threads) {
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (threads == 1 || input.ids.size() < 2 * kMinDeferredTriangles) {
+    SahBuilder(input, traversal_cost, isect_cost, empty_bonus, max_leaf_prims, perfect_splits,
+               writer)
+        .Run();
+    return;
+  }
+  // The top levels serially, down to a depth with about 4 subtrees per
+  // thread; then the subtrees on the threads; then the pieces put together
+  // in the serial order. Every node is decided exactly as the serial build
+  // decides it (the same events, depth and bad-refine count), so the tree
+  // is the same.
+  int depth = 0;
+  while ((1 << depth) < 4 * threads && depth < 16) ++depth;
+  std::vector<img::Node> top;
+  std::vector<uint32_t> top_lists;
+  std::vector<DeferredSubtree> subtrees;
+  {
+    TreeWriter top_writer(&top, &top_lists, writer->source());
+    SahBuilder builder(input, traversal_cost, isect_cost, empty_bonus, max_leaf_prims, perfect_splits,
+                       &top_writer);
+    builder.DeferAt(depth, kMinDeferredTriangles, &subtrees);
+    builder.Run();
+  }
+  // Largest first, so the threads finish together.
+  std::vector<size_t> order(subtrees.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return subtrees[a].count > subtrees[b].count; });
+  std::atomic<size_t> next{0};
+  std::vector<std::exception_ptr> errors(subtrees.size());
+  auto worker = [&]() {
+    for (size_t k; (k = next.fetch_add(1)) < order.size();) {
+      DeferredSubtree& d = subtrees[order[k]];
+      try {
+        TreeWriter sub_writer(&d.nodes, &d.lists, writer->source());
+        SahBuilder(input, traversal_cost, isect_cost, empty_bonus, max_leaf_prims, perfect_splits, &sub_writer)
+            .RunSubtree(d);
+      } catch (...) {
+        errors[order[k]] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);  // the first subtree's in tree order, as the serial build would
+  }
+  Assemble(top, top_lists, subtrees, writer);
 }
 
 }  // namespace kdrt::accel

@@ -49,6 +49,10 @@ void AddSceneOptions(CLI::App& cmd, SceneSpec& spec, bool structures) {
   cmd.add_option("--trav-cost", b.traversal_cost, "SAH cost of a traversal step")->capture_default_str();
   cmd.add_option("--empty-bonus", b.empty_bonus, "SAH bonus for empty children")->capture_default_str();
   cmd.add_flag("--perfect-splits", b.perfect_splits, "Clip triangles to the node box (SAH only)");
+  b.threads = 0;
+  cmd.add_option("--build-threads", b.threads,
+                 "SAH build threads (0: all cores); the tree is the same for any number")
+      ->capture_default_str();
   cmd.add_option("--sphere-segments", spec.sphere_segments,
                  "Tessellation of NFF spheres and cones (0: the loader's default)");
 }

@@ -159,7 +159,9 @@ TEST(Shading, RaySetsAreDeterministicAndSeeded) {
     ASSERT_EQ(a[k].rays.size(), b[k].rays.size());
     for (size_t i = 0; i < a[k].rays.size(); ++i) {
       EXPECT_EQ(std::memcmp(&a[k].rays[i], &b[k].rays[i], sizeof(Ray)), 0);
-      if (i > 0) EXPECT_LE(a[k].pixel[i - 1], a[k].pixel[i]) << "passes follow the primary order";
+      if (i > 0) {
+        EXPECT_LE(a[k].pixel[i - 1], a[k].pixel[i]) << "passes follow the primary order";
+      }
     }
   }
   // The seed moves the AO and bounce directions, not the shadow rays.
