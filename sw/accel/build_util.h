@@ -83,12 +83,10 @@ class TreeWriter {
       return;
     }
     std::sort(ids.begin(), ids.end());
-    if (ids.size() > img::kMaxIndex || lists_->size() + ids.size() > UINT32_MAX) {
-      Fail("a leaf list does not fit the 30-bit count or the 32-bit list index");
-    }
-    nodes_->push_back(img::Node::Leaf(static_cast<uint32_t>(lists_->size()),
-                                      static_cast<uint32_t>(ids.size())));
-    lists_->insert(lists_->end(), ids.begin(), ids.end());
+    if (ids.size() > img::kMaxIndex) Fail(kListTooLong);
+    const uint32_t first = static_cast<uint32_t>(lists_->size());
+    AppendList(ids.data(), ids.size());
+    nodes_->push_back(img::Node::Leaf(first, static_cast<uint32_t>(ids.size())));
   }
 
   [[noreturn]] void Fail(const std::string& what) const;
@@ -100,7 +98,7 @@ class TreeWriter {
     nodes_->push_back(n);
   }
   void AppendList(const uint32_t* ids, size_t count) {
-    if (lists_->size() + count > UINT32_MAX) Fail("a leaf list does not fit the 30-bit count or the 32-bit list index");
+    if (lists_->size() + count > UINT32_MAX) Fail(kListTooLong);
     lists_->insert(lists_->end(), ids, ids + count);
   }
   uint32_t node_count() const { return static_cast<uint32_t>(nodes_->size()); }
@@ -108,6 +106,8 @@ class TreeWriter {
   const std::string& source() const { return source_; }
 
  private:
+  static constexpr const char* kListTooLong = "a leaf list does not fit the 30-bit count or the 32-bit list index";
+
   uint32_t NextIndex() const {
     if (nodes_->size() > img::kMaxIndex) {
       Fail("kd-tree has more than 2^30 nodes, too many for the memory image");

@@ -43,6 +43,7 @@ struct Format {
   int e = 8;   // exponent bits, 2..8 (11 for fp64)
   int m = 23;  // mantissa bits (without the hidden bit), 1..23 (52 for fp64)
 
+  bool IsFp32() const { return e == 8 && m == 23; }
   bool IsFp64() const { return e == 11 && m == 52; }
 
   int Width() const { return 1 + e + m; }

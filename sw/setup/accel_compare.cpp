@@ -11,17 +11,6 @@
 namespace kdrt {
 namespace {
 
-AccelTotals FromTraceStats(const TraceStats& ts) {
-  AccelTotals t;
-  t.rays = ts.rays;
-  t.hits = ts.hits;
-  t.seconds = ts.seconds;
-  t.nodes = ts.totals.nodes;
-  t.leaves = ts.totals.leaves;
-  t.tri_tests = ts.totals.tri_tests;
-  return t;
-}
-
 // Counts the records that differ from the reference: ties (another triangle
 // at the same t, within kTieUlps) apart from real mismatches.
 void CompareHits(const std::vector<Hit>& reference, const std::vector<Hit>& hits, AccelRow* row) {
@@ -64,7 +53,7 @@ std::vector<Hit> BuildAndTrace(AccelKind kind, const Scene& scene, const SceneSp
     return Timed(options.repeat, &row->totals, [&](AccelTotals* totals) {
       TraceStats ts;
       std::vector<Hit> h = TraceRays(image, rays, to, &ts);
-      *totals = FromTraceStats(ts);
+      *totals = ToAccelTotals(ts);
       return h;
     });
   }

@@ -81,7 +81,7 @@ std::string AccelTable(const std::vector<AccelComparison>& scenes, bool markdown
         for (size_t k = 0; k < table[i].size(); ++k) {
           const std::string& cell = table[i][k];
           const std::string pad(width[k] - cell.size(), ' ');
-          out << (k == 0 ? "  " : "  ") << (k == 0 ? cell + pad : pad + cell);
+          out << "  " << (k == 0 ? cell + pad : pad + cell);
         }
         out << "\n";
       }

@@ -12,7 +12,6 @@
 // Traversal: a stack, the near child first (by the split axis and the sign
 // of the ray's direction), a conservative slab test against [tmin, best t].
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -453,11 +452,13 @@ inline bool EntersBox(const A& a, const RaySetup<A>& r, const SlabOrder& s, cons
 
 class Bvh final : public StructureBase<Bvh> {
  public:
-  Bvh(const StructureInput& input, BvhTree tree) : StructureBase<Bvh>(input), tree_(std::move(tree)) {}
+  Bvh(const StructureInput& input, BvhTree tree, StructureStats stats)
+      : StructureBase<Bvh>(input), tree_(std::move(tree)) {
+    stats_ = std::move(stats);
+  }
   AccelKind kind() const override { return AccelKind::kBvh; }
   bool uses_mailbox() const override { return false; }
   const BvhTree& tree() const { return tree_; }
-  StructureStats& mutable_stats() { return stats_; }
 
   // Counters: `nodes` counts the nodes whose box test the ray passed (inner
   // nodes and leaves; a box test that fails is not counted), `leaves` the
@@ -512,14 +513,12 @@ class Bvh final : public StructureBase<Bvh> {
 std::unique_ptr<Structure> BuildBvh(const StructureInput& input, const StructureOptions& options) {
   CheckStructureOptions(options);
   if (input.ids.size() > kBvhMaxTriangles) throw InputError("bvh: more than 2^30 triangles");
-  const auto start = std::chrono::steady_clock::now();
-  BvhTree tree;
-  StructureStats stats;
-  BvhBuilder(input, options.bvh_bins).Build(&tree, &stats);
-  auto bvh = std::make_unique<Bvh>(input, std::move(tree));
-  stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  bvh->mutable_stats() = std::move(stats);
-  return bvh;
+  return Structure::Timed([&] {
+    BvhTree tree;
+    StructureStats stats;
+    BvhBuilder(input, options.bvh_bins).Build(&tree, &stats);
+    return std::make_unique<Bvh>(input, std::move(tree), std::move(stats));
+  });
 }
 
 const BvhTree* BvhTreeOf(const Structure& s) {

@@ -2,7 +2,6 @@
 // over the kd-tree's scene box, n^3 = d |O| of them, each listing the
 // triangles it overlaps; rays walk it with the 3D-DDA and a mailbox keeps a
 // triangle listed in several cells from being tested twice.
-#include <chrono>
 
 #include "structures/grid_level.h"
 #include "structures/structure.h"
@@ -12,11 +11,7 @@ namespace {
 
 class Grid : public StructureBase<Grid>, public grid::CellsView {
  public:
-  Grid(const StructureInput& input, const StructureOptions& options) : StructureBase(input) {
-    const auto start = std::chrono::steady_clock::now();
-    Build(options);
-    stats_.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
+  Grid(const StructureInput& input, const StructureOptions& options) : StructureBase(input) { Build(options); }
 
   AccelKind kind() const override { return AccelKind::kGrid; }
   bool uses_mailbox() const override { return true; }
@@ -62,7 +57,7 @@ class Grid : public StructureBase<Grid>, public grid::CellsView {
 
 std::unique_ptr<Structure> BuildGrid(const StructureInput& input, const StructureOptions& options) {
   CheckStructureOptions(options);
-  return std::make_unique<Grid>(input, options);
+  return Structure::Timed([&] { return std::make_unique<Grid>(input, options); });
 }
 
 }  // namespace kdrt

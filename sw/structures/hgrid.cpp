@@ -11,7 +11,6 @@
 // sub-grid, it walks the sub-grid from the cell's entry to its exit (the
 // sub-grid's outer planes are the cell's, so the two walks compute the same
 // crossing times). One mailbox serves every level.
-#include <chrono>
 #include <cmath>
 #include <deque>
 
@@ -24,9 +23,7 @@ namespace {
 class Hgrid : public StructureBase<Hgrid>, public grid::CellsView {
  public:
   Hgrid(const StructureInput& input, const StructureOptions& options) : StructureBase(input), options_(options) {
-    const auto start = std::chrono::steady_clock::now();
     Build();
-    stats_.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
   AccelKind kind() const override { return AccelKind::kHgrid; }
@@ -191,7 +188,7 @@ class Hgrid : public StructureBase<Hgrid>, public grid::CellsView {
 
 std::unique_ptr<Structure> BuildHgrid(const StructureInput& input, const StructureOptions& options) {
   CheckStructureOptions(options);
-  return std::make_unique<Hgrid>(input, options);
+  return Structure::Timed([&] { return std::make_unique<Hgrid>(input, options); });
 }
 
 }  // namespace kdrt

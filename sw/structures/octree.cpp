@@ -15,7 +15,6 @@
 // stack. After a leaf the ray stops if its best hit lies within the leaf's
 // (widened) exit, taken from the leaf's box (CellExit).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "common/error.h"
@@ -282,11 +281,6 @@ using octree::Node;
 
 Octree::Octree(const StructureInput& input, const StructureOptions& options)
     : StructureBase(input), max_prims_(options.octree_max_prims) {
-  const auto start = std::chrono::steady_clock::now();
-  if (options.octree_max_depth < -1 || options.octree_max_depth > octree::kMaxDepth) {
-    throw InputError("octree_max_depth must be in [-1, 32]");
-  }
-  if (max_prims_ < 1) throw InputError("octree_max_prims must be at least 1");
   depth_limit_ = options.octree_max_depth >= 0 ? options.octree_max_depth : octree::DefaultMaxDepth(input.ids.size());
   margin_ = octree::BinningMargin(input.bounds);
   for (int k = 0; k < 3; ++k) {
@@ -308,7 +302,6 @@ Octree::Octree(const StructureInput& input, const StructureOptions& options)
                   {"depth_limit", depth_limit_},
                   {"duplication_budget", octree::kDuplicationBudget},
                   {"oversized_leaves", builder.oversized_leaves()}};
-  stats_.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 AccelKind Octree::kind() const { return AccelKind::kOctree; }
@@ -367,7 +360,8 @@ template void Octree::TraceT(const fp::NativeF64Arith&, const RaySetup<fp::Nativ
                              TraceResult<fp::NativeF64Arith>&, TraceScratch&) const;
 
 std::unique_ptr<Structure> BuildOctree(const StructureInput& input, const StructureOptions& options) {
-  return std::make_unique<Octree>(input, options);
+  CheckStructureOptions(options);
+  return Structure::Timed([&] { return std::make_unique<Octree>(input, options); });
 }
 
 }  // namespace kdrt

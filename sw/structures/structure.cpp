@@ -17,20 +17,6 @@ constexpr KindName kKinds[] = {
     {AccelKind::kBvh, "bvh"},
 };
 
-// The kd-tree builder's rule (accel/kdtree.cpp): the cross product, in
-// float, is exactly zero.
-bool ZeroArea(const img::TriangleRecord& t) {
-  float e1[3], e2[3];
-  for (int i = 0; i < 3; ++i) {
-    e1[i] = t.v1[i] - t.v0[i];
-    e2[i] = t.v2[i] - t.v0[i];
-  }
-  const float cx = e1[1] * e2[2] - e1[2] * e2[1];
-  const float cy = e1[2] * e2[0] - e1[0] * e2[2];
-  const float cz = e1[0] * e2[1] - e1[1] * e2[0];
-  return cx == 0.0f && cy == 0.0f && cz == 0.0f;
-}
-
 }  // namespace
 
 AccelKind ParseAccelKind(const std::string& name) {
@@ -97,7 +83,11 @@ StructureInput MakeStructureInput(const ImageView& image) {
   for (uint32_t id = 0; id < h.tri_count; ++id) {
     const img::TriangleRecord t = image.triangle(id);
     in.triangles[id] = t;
-    if (ZeroArea(t)) continue;
+    // The kd-tree builder's rule: the cross product, in float, is exactly zero.
+    if (IsDegenerate(Triangle{glm::vec3(t.v0[0], t.v0[1], t.v0[2]), glm::vec3(t.v1[0], t.v1[1], t.v1[2]),
+                              glm::vec3(t.v2[0], t.v2[1], t.v2[2])})) {
+      continue;
+    }
     in.ids.push_back(id);
     accel::Box& b = in.boxes[id];
     for (int a = 0; a < 3; ++a) {
@@ -114,7 +104,6 @@ StructureInput MakeStructureInput(const ImageView& image) {
 
 std::unique_ptr<Structure> BuildStructure(AccelKind kind, const StructureInput& input,
                                           const StructureOptions& options) {
-  CheckStructureOptions(options);
   switch (kind) {
     case AccelKind::kGrid:
       return BuildGrid(input, options);

@@ -21,6 +21,7 @@
 //    that ray (the hit, if any, is already in `best`).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -197,6 +198,16 @@ class Structure {
   virtual bool uses_mailbox() const = 0;
   const StructureStats& stats() const { return stats_; }
   const StructureInput& input() const { return *input_; }
+
+  // What every Build* factory returns: make() (the whole build) run, and
+  // its wall time recorded in stats().build_seconds.
+  template <class Make>
+  static std::unique_ptr<Structure> Timed(Make&& make) {
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<Structure> s = make();
+    s->stats_.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return s;
+  }
   size_t triangle_count() const { return input_->triangles.size(); }
 
   // Traces one ray already set up in the frame. `best` comes in as a miss
@@ -229,7 +240,8 @@ class StructureBase : public Structure {
 };
 
 // The backends (grid.cpp, hgrid.cpp, octree.cpp, bvh.cpp). They keep a
-// pointer to `input`, which must outlive them. Build time goes into stats().
+// pointer to `input`, which must outlive them; each checks `options`
+// (CheckStructureOptions). Build time goes into stats() (Structure::Timed).
 std::unique_ptr<Structure> BuildGrid(const StructureInput& input, const StructureOptions& options);
 std::unique_ptr<Structure> BuildHgrid(const StructureInput& input, const StructureOptions& options);
 std::unique_ptr<Structure> BuildOctree(const StructureInput& input, const StructureOptions& options);

@@ -9,8 +9,6 @@
 namespace kdrt {
 namespace {
 
-bool IsFp32(const fp::Format& f) { return f.e == 8 && f.m == 23; }
-
 template <class A>
 Hit TraceWith(const A& a, const Structure& s, const Frame& frame, const Ray& ray, Query query,
               TraceScratch& scratch) {
@@ -29,7 +27,7 @@ Hit TraceWith(const A& a, const Structure& s, const Frame& frame, const Ray& ray
 // fn(arith) under the format's rounding mode (as the kd-tree tracer).
 template <class Fn>
 auto WithNativeArith(const fp::Format& format, Fn&& fn) {
-  if (IsFp32(format)) {
+  if (format.IsFp32()) {
     fp::ScopedFtzDaz ftz;
     return fn(fp::NativeF32Arith{});
   }
@@ -39,8 +37,19 @@ auto WithNativeArith(const fp::Format& format, Fn&& fn) {
 
 }  // namespace
 
+AccelTotals ToAccelTotals(const TraceStats& ts) {
+  AccelTotals t;
+  t.rays = ts.rays;
+  t.hits = ts.hits;
+  t.seconds = ts.seconds;
+  t.nodes = ts.totals.nodes;
+  t.leaves = ts.totals.leaves;
+  t.tri_tests = ts.totals.tri_tests;
+  return t;
+}
+
 void CheckStructureTraceOptions(const TraceOptions& options) {
-  if (!IsFp32(options.format) && !options.format.IsFp64()) {
+  if (!options.format.IsFp32() && !options.format.IsFp64()) {
     throw InputError("the software structures (grid, hgrid, octree, bvh) trace in fp32 or fp64 only, not " +
                      options.format.Name() + " (the reduced formats and the hardware read the kd-tree)");
   }

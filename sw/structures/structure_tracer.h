@@ -28,6 +28,9 @@ struct AccelTotals {
   }
 };
 
+// The kd-tree tracer's totals in the same form (no mailbox).
+AccelTotals ToAccelTotals(const TraceStats& stats);
+
 // Throws InputError unless options.format is fp32 or fp64 and the test is
 // the watertight one (the backends share nothing else with the datapath).
 void CheckStructureTraceOptions(const TraceOptions& options);

@@ -59,13 +59,7 @@ std::vector<Hit> TraceBatch(const PreparedScene& p, const ImageView& traced, con
   if (p.structure) return TraceStructureRays(*p.structure, p.frame, rays, options, totals);
   TraceStats ts;
   std::vector<Hit> hits = TraceRays(traced, rays, options, &ts);
-  *totals = AccelTotals{};
-  totals->rays = ts.rays;
-  totals->hits = ts.hits;
-  totals->seconds = ts.seconds;
-  totals->nodes = ts.totals.nodes;
-  totals->leaves = ts.totals.leaves;
-  totals->tri_tests = ts.totals.tri_tests;
+  *totals = ToAccelTotals(ts);
   return hits;
 }
 

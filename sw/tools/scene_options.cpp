@@ -31,8 +31,8 @@ void AddSceneOptions(CLI::App& cmd, SceneSpec& spec, bool structures) {
     cmd.add_option_function<std::string>(
            "--accel",
            [&b](const std::string& name) {
-             for (const char* software : {"grid", "hgrid", "octree", "bvh"}) {
-               if (name == software) {
+             for (AccelKind kind : AllAccelKinds()) {
+               if (!IsKdTree(kind) && name == AccelKindName(kind)) {
                  throw InputError("--accel " + name + ": this command reads the kd-tree the hardware reads (sah, "
                                   "median or midpoint); the software structures are for kdrt render and kdrt "
                                   "compare-accel");

@@ -19,14 +19,12 @@ const char* IsectMethodName(IsectMethod m) { return m == IsectMethod::kWatertigh
 
 namespace {
 
-bool IsFp32(const fp::Format& f) { return f.e == 8 && f.m == 23; }
-
 // Runs fn(arith) with the arithmetic policy for the format: native float for
 // fp32, native double for fp64 (the reference), the soft-float model for the
 // rest (SoftArith refuses anything that is not a soft format).
 template <class Fn>
 auto WithArith(const fp::Format& format, Fn&& fn) {
-  if (IsFp32(format)) {
+  if (format.IsFp32()) {
     fp::ScopedFtzDaz ftz;
     return fn(fp::NativeF32Arith{});
   }
