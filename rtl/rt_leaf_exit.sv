@@ -7,7 +7,11 @@
 // of TraceRay after a leaf (sw/trace/traversal.h):
 //   if hit and (any-hit query or best.t <= t1): done; if the stack is empty: done;
 //   pop; if hit and best.t < popped t0: done
-// all in one cycle: the top entry is looked at before the pop, and the stack
+// except that while the thread's stack holds an entry whose t0 is NaN (the
+// far child of a node whose split plane the ray lies in, InPlane in
+// traversal.h), neither hit rule ends a closest-hit ray: only the empty
+// stack does. A counter per thread holds the number of such entries.
+// All in one cycle: the top entry is looked at before the pop, and the stack
 // is popped only when the thread goes on (exit_done_o low), to the popped
 // node with [pop_t0_o, pop_t1_o]. Stacks are cleared for a new ray (clear_i)
 // and pushed by traversal steps (push_i; push_full_o: the push is dropped,
@@ -54,7 +58,12 @@ module rt_leaf_exit #(
   output logic [W-1:0]            pop_t1_o
 );
 
+  localparam int unsigned SpW = $clog2(StackDepth + 1);
+
   logic stack_empty, best_le_t1, best_lt_pop;
+  logic pop_ok, push_ok, push_in_plane, pop_in_plane, exit_in_plane;
+  logic [SpW-1:0] in_plane_q [Threads];  // entries with a NaN t0 on each thread's stack
+
 
   rt_rr_arb #(.N(Threads)) u_arb (
     .clk_i, .rst_ni, .req_i, .ack_i(1'b1), .valid_o(exit_valid_o), .idx_o(exit_idx_o)
@@ -63,7 +72,7 @@ module rt_leaf_exit #(
   rt_thread_stack #(.Threads(Threads), .StackDepth(StackDepth), .Width(NodeIdxWidth + 2 * W)) u_stack (
     .clk_i, .rst_ni, .clear_i, .clear_idx_i,
     .push_i, .push_idx_i, .push_data_i({push_node_i, push_t0_i, push_t1_i}), .push_full_o,
-    .pop_i(exit_valid_o && !exit_done_o), .pop_idx_i(exit_idx_o),
+    .pop_i(pop_ok), .pop_idx_i(exit_idx_o),
     .pop_empty_o(stack_empty), .top_o({pop_node_o, pop_t0_o, pop_t1_o})
   );
 
@@ -76,7 +85,33 @@ module rt_leaf_exit #(
     .valid_o(), .lt_o(best_lt_pop), .le_o(), .eq_o(), .min_o(), .max_o()
   );
 
-  assign exit_done_o = (exit_hit_i && (exit_any_i || best_le_t1)) || stack_empty || (exit_hit_i && best_lt_pop);
+  assign exit_in_plane = in_plane_q[exit_idx_o] != '0;
+  assign exit_done_o = (exit_hit_i && exit_any_i) || stack_empty ||
+                       (exit_hit_i && !exit_in_plane && (best_le_t1 || best_lt_pop));
+
+  // The counters follow rt_thread_stack's rules: a pop (never of an empty
+  // stack) wins over a push, a push (dropped when full) over a clear.
+  assign pop_ok = exit_valid_o && !exit_done_o;
+  assign push_ok = push_i && !push_full_o;
+  // NaN: exponent all ones, mantissa not zero (any sign).
+  assign push_in_plane = (&push_t0_i[W-2:M]) && (|push_t0_i[M-1:0]);
+  assign pop_in_plane = (&pop_t0_o[W-2:M]) && (|pop_t0_o[M-1:0]);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      for (int t = 0; t < Threads; t++) in_plane_q[t] <= '0;
+    end else begin
+      for (int t = 0; t < Threads; t++) begin
+        if (pop_ok && exit_idx_o == ThW'(t)) begin
+          if (pop_in_plane) in_plane_q[t] <= in_plane_q[t] - 1'b1;
+        end else if (push_ok && push_idx_i == ThW'(t)) begin
+          if (push_in_plane) in_plane_q[t] <= in_plane_q[t] + 1'b1;
+        end else if (clear_i && clear_idx_i == ThW'(t)) begin
+          in_plane_q[t] <= '0;
+        end
+      end
+    end
+  end
 
 endmodule
 

@@ -11,7 +11,11 @@
 //    smallest triangle id;
 //  - after a leaf, the ray stops if it has a hit with t <= the cell's exit t
 //    (an any-hit query, Query::kAny: if it has a hit at all);
-//    a popped cell whose entry t lies beyond the best hit also ends the ray.
+//    a popped cell whose entry t lies beyond the best hit also ends the ray;
+//  - a ray lying in a split plane (a zero direction component, the origin
+//    on the plane: the split distance is 0 x inf = NaN) visits both children,
+//    and neither stop rule applies while the far child it pushed is still on
+//    the stack (see InPlane below).
 #pragma once
 
 #include <cstdint>
@@ -104,6 +108,19 @@ TraversalStep<A> StepInnerNode(const A& a, float split_fp32, typename A::T o, ty
   return s;
 }
 
+// A split distance that is NaN: the ray lies in the split plane. A triangle
+// touching the plane from one side only is listed in that side's child
+// alone, so such a ray must see both children, and a hit in the near child
+// says nothing about the far one: the usual stop rules assume the children's
+// intervals are ordered along the ray, and these are not. The near child
+// gets a NaN exit (the nudge keeps NaN) and the far child a NaN entry, and
+// the far child's stack entry marks the ray: while one is on the stack, the
+// ray stops only when its stack is empty (rtl/rt_leaf_exit.sv counts them).
+template <class A>
+bool InPlane(const A& a, typename A::T t_entry) {
+  return !a.Eq(t_entry, t_entry);
+}
+
 // Converts a datapath result to the fp32 hit record (exact widening), t in
 // the caller's units (an exact power-of-two scale, trace/frame.h).
 template <class A>
@@ -140,6 +157,7 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
   };
   Entry stack[kMaxTraversalStack];
   int sp = 0;
+  int in_plane = 0;  // stack entries with a NaN entry t (InPlane)
   const uint32_t* lists = image.lists();
   uint32_t node = 0;
   for (;;) {
@@ -158,6 +176,7 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
         node = second;
       } else {
         stack[sp++] = Entry{second, step.t_lo, t1};
+        if (InPlane(a, step.t_lo)) ++in_plane;
         node = first;
         t1 = step.t_hi;
       }
@@ -182,10 +201,13 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
         }
       }
     }
-    if (best.prim != kNoPrim && (query == Query::kAny || a.Le(best.t, t1))) return best;
+    const bool may_stop = best.prim != kNoPrim && in_plane == 0;
+    if (best.prim != kNoPrim && query == Query::kAny) return best;
+    if (may_stop && a.Le(best.t, t1)) return best;
     if (sp == 0) return best;
     const Entry& e = stack[--sp];
-    if (best.prim != kNoPrim && a.Lt(best.t, e.t0)) return best;
+    if (may_stop && a.Lt(best.t, e.t0)) return best;
+    if (InPlane(a, e.t0)) --in_plane;
     node = e.node;
     t0 = e.t0;
     t1 = e.t1;

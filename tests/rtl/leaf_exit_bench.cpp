@@ -4,11 +4,14 @@
 // stack dropped, the pop winning over the push and the push over the clear
 // when they name the same thread), and the exit rule of TraceRay after a leaf
 // (sw/trace/traversal.h) with the model's comparisons (fp::Le, fp::Lt):
-//   done = (hit && (any || best.t <= t1)) || stack empty || (hit && best.t < top.t0)
-// and, when the thread goes on, the popped entry. Values come from a small
+//   done = (hit && any) || stack empty
+//          || (hit && no entry with a NaN t0 on the stack && (best.t <= t1 || best.t < top.t0))
+// (an entry with a NaN t0 is the far child of a ray lying in a split plane,
+// InPlane in traversal.h) and, when the thread goes on, the popped entry. Values come from a small
 // pool of random encodings of the format (with zeros, infinities and NaNs)
 // so that ties are frequent; clears, pushes and exit requests are random in
 // regimes that fill the stacks, drain them, or mix.
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <vector>
@@ -61,7 +64,7 @@ bool Run(Format f, uint64_t cycles) {
   unsigned last = kThreads - 1;  // the arbiter's pointer after reset
   std::array<uint32_t, 6> pool{};
   double p_push = 0.5, p_req = 0.5, p_clear = 0.05, p_hit = 0.5;
-  uint64_t exits = 0, by_any = 0, by_t1 = 0, by_empty = 0, by_pop_t0 = 0, pops = 0, dropped = 0;
+  uint64_t exits = 0, by_any = 0, by_t1 = 0, by_empty = 0, by_pop_t0 = 0, held = 0, pops = 0, dropped = 0;
   for (uint64_t cycle = 0; cycle < cycles; ++cycle) {
     if (cycle % 200 == 0) {
       const unsigned regime = rng.Below(3);  // fill, drain, mix
@@ -107,14 +110,17 @@ bool Run(Format f, uint64_t cycles) {
     bool done = false;
     if (valid) {
       const std::vector<Entry>& s = model[idx];
-      const bool by_any_hit = hit && any && !fp::Le(f, best_t, t1);
-      const bool le_t1 = hit && fp::Le(f, best_t, t1), empty = s.empty();
+      const bool empty = s.empty();
+      const bool in_plane = std::any_of(s.begin(), s.end(), [&](const Entry& e) { return fp::IsNaN(f, e.t0); });
+      const bool le_t1 = hit && fp::Le(f, best_t, t1);
       const bool lt_pop = hit && !empty && fp::Lt(f, best_t, s.back().t0);
-      done = by_any_hit || le_t1 || empty || lt_pop;
-      by_any += by_any_hit && !empty && !lt_pop;
-      by_t1 += le_t1;
-      by_empty += !le_t1 && !by_any_hit && empty;
-      by_pop_t0 += !le_t1 && !by_any_hit && lt_pop;
+      const bool by_any_hit = hit && any, by_rule = !in_plane && (le_t1 || lt_pop);
+      done = by_any_hit || empty || by_rule;
+      by_any += by_any_hit && !empty && !by_rule;
+      by_t1 += !by_any_hit && !in_plane && le_t1;
+      by_empty += !by_any_hit && empty && !le_t1;
+      by_pop_t0 += !by_any_hit && !in_plane && !le_t1 && lt_pop;
+      held += !done && (le_t1 || lt_pop);
     }
     bool bad = static_cast<bool>(dut.exit_valid_o) != valid || static_cast<bool>(dut.push_full_o) != full;
     if (valid) {
@@ -150,21 +156,17 @@ bool Run(Format f, uint64_t cycles) {
       }
     }
   }
-  if (by_any == 0 || by_t1 == 0 || by_empty == 0 || by_pop_t0 == 0 || pops == 0 || dropped == 0) {
-    std::printf("rt_leaf_exit %s: FAIL: the traffic missed a case (done by any-hit only %llu, by t1 %llu, empty %llu, popped t0 %llu; "
-                "pops %llu; pushes onto full stacks %llu)\n",
-                f.Name().c_str(), static_cast<unsigned long long>(by_any), static_cast<unsigned long long>(by_t1),
-                static_cast<unsigned long long>(by_empty),
-                static_cast<unsigned long long>(by_pop_t0), static_cast<unsigned long long>(pops),
-                static_cast<unsigned long long>(dropped));
+  auto u = [](uint64_t x) { return static_cast<unsigned long long>(x); };
+  if (by_any == 0 || by_t1 == 0 || by_empty == 0 || by_pop_t0 == 0 || held == 0 || pops == 0 || dropped == 0) {
+    std::printf("rt_leaf_exit %s: FAIL: the traffic missed a case (done by any-hit only %llu, by t1 %llu, empty %llu, "
+                "popped t0 %llu; held by an in-plane entry %llu; pops %llu; pushes onto full stacks %llu)\n",
+                f.Name().c_str(), u(by_any), u(by_t1), u(by_empty), u(by_pop_t0), u(held), u(pops), u(dropped));
     return false;
   }
   std::printf("rt_leaf_exit %s: PASS (%llu cycles, %llu exits: done by any-hit only %llu, by t1 %llu, empty %llu, "
-              "popped t0 %llu; %llu pops; %llu pushes onto full stacks)\n",
-              f.Name().c_str(), static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(exits),
-              static_cast<unsigned long long>(by_any), static_cast<unsigned long long>(by_t1), static_cast<unsigned long long>(by_empty),
-              static_cast<unsigned long long>(by_pop_t0), static_cast<unsigned long long>(pops),
-              static_cast<unsigned long long>(dropped));
+              "popped t0 %llu; held by an in-plane entry %llu; %llu pops; %llu pushes onto full stacks)\n",
+              f.Name().c_str(), u(cycles), u(exits), u(by_any), u(by_t1), u(by_empty), u(by_pop_t0), u(held), u(pops),
+              u(dropped));
   return true;
 }
 

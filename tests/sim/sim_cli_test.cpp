@@ -26,6 +26,7 @@
 #include "fp/format.h"
 #include "scene/nff_writer.h"
 #include "tests/common/moved_sphere.h"
+#include "tests/trace/trace_test_util.h"
 #include "trace/images.h"
 #include "trace/rays_file.h"
 
@@ -312,6 +313,29 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"gen:rings:800", "bf16"}, SceneCase{"gen:tetra:1000", "fp16"},
                       SceneCase{"gen:tree:2000", "fp32"}, SceneCase{"gen:gears:1500", "bf16"}),
     CaseName);
+
+// Rays lying in the kd-tree's split planes (a NaN split distance: both
+// children, and no early stop while the far child waits on the stack,
+// InPlane in trace/traversal.h and rtl/rt_leaf_exit.sv): the RTL returns the
+// reference's records (kdrt sim checks every ray and fails on the first
+// difference) and the fast model the RTL's cycles, in every preset.
+class InPlaneRays : public SimCli, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(InPlaneRays, SimMatchesTheReference) {
+  const testing::Prepared p(GenerateScene("gears", 1500));
+  const std::vector<Ray> rays = testing::SplitPlaneRays(p.view(), 5);
+  ASSERT_GE(rays.size(), 200u);
+  WriteRaysFile(Path("plane.rays"), rays);
+  const RunResult r = RunKdrt("sim gen:gears:1500 --rays " + Path("plane.rays") + " --format " + GetParam() +
+                              " --model both -q -o " + Path("x.png") + " --json " + Path("x.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = ReadJson(Path("x.json"));
+  EXPECT_EQ(j["rays"].get<size_t>(), rays.size());
+  EXPECT_GT(j["hits"].get<size_t>(), rays.size() / 10);
+  EXPECT_EQ(j["fast"]["error"].get<double>(), 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Presets, InPlaneRays, ::testing::Values("fp32", "fp24", "bf16", "fp16"));
 
 TEST_F(SimCli, FastModelOptionErrors) {
   for (const std::string& bad : std::vector<std::string>{"--model slow", "--model fast --cores 2",

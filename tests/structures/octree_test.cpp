@@ -207,30 +207,6 @@ void ExpectExactHits(const OctreeScene& s, const std::vector<Ray>& rays, const s
   }
 }
 
-// A world-space ray whose framed origin is exactly `framed_o` (the frame
-// subtracts the origin in fp32 and scales by a power of two); false if no
-// float nearby maps there.
-bool RayAtFramedPoint(const Frame& f, const glm::vec3& framed_o, const glm::vec3& d, Ray* out) {
-  Ray r{glm::vec3(0.0f), d, 0.0f, INFINITY};
-  for (int i = 0; i < 3; ++i) {
-    r.o[i] = static_cast<float>(double(f.origin[i]) + std::ldexp(double(framed_o[i]), -f.scale_log2));
-  }
-  for (int attempt = 0; attempt < 8; ++attempt) {
-    const FramedRay fr = ToFrame(r, f);
-    bool exact = true;
-    for (int i = 0; i < 3; ++i) {
-      if (fr.ray.o[i] == framed_o[i]) continue;
-      exact = false;
-      r.o[i] = std::nextafter(r.o[i], fr.ray.o[i] < framed_o[i] ? INFINITY : -INFINITY);
-    }
-    if (exact) {
-      *out = r;
-      return true;
-    }
-  }
-  return false;
-}
-
 // No leaf holds more than max_prims triangles unless it is at the depth
 // limit or splitting it fails a guard (no gain, over its budget); every inner
 // node passed the guards.
@@ -455,7 +431,7 @@ TEST(OctreeTest, RaysOnMidPlanesAndFromBoxFacesFindTheClosestHit) {
     size_t inexact = 0;
     auto add = [&](std::vector<Ray>& set, const glm::vec3& framed_o, const glm::vec3& d) {
       Ray r;
-      if (RayAtFramedPoint(frame, framed_o, d, &r)) {
+      if (testing::RayAtFramedPoint(frame, framed_o, d, &r)) {
         set.push_back(r);
       } else {
         ++inexact;
