@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "accel/kdtree.h"
 #include "common/image_format.h"
 #include "scene/scene.h"
 
@@ -75,9 +76,11 @@ class TreeWriter {
     (*nodes_)[index] = img::Node::Inner(axis, split, NextIndex());
   }
 
-  // Sorts `ids` ascending (the leaf-list contract) and appends the leaf.
-  void AddLeaf(std::vector<uint32_t>& ids) {
+  // Sorts `ids` ascending (the leaf-list contract) and appends the leaf,
+  // counting it under `cause`.
+  void AddLeaf(std::vector<uint32_t>& ids, LeafCause cause) {
     NextIndex();
+    causes_.Add(cause, ids.size());
     if (ids.empty()) {
       nodes_->push_back(img::Node::Leaf(0, 0));
       return;
@@ -104,6 +107,9 @@ class TreeWriter {
   uint32_t node_count() const { return static_cast<uint32_t>(nodes_->size()); }
   size_t list_count() const { return lists_->size(); }
   const std::string& source() const { return source_; }
+  const LeafCauses& causes() const { return causes_; }
+  // For the parts of a parallel build: their leaves, counted elsewhere.
+  void MergeCauses(const LeafCauses& c) { causes_.Merge(c); }
 
  private:
   static constexpr const char* kListTooLong = "a leaf list does not fit the 30-bit count or the 32-bit list index";
@@ -118,6 +124,7 @@ class TreeWriter {
   std::vector<img::Node>* nodes_;
   std::vector<uint32_t>* lists_;
   std::string source_;
+  LeafCauses causes_;
 };
 
 // Box of the triangle clipped to `cell` (Sutherland-Hodgman in double,

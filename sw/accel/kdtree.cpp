@@ -134,7 +134,7 @@ KdTree BuildKdTree(const Scene& scene, const BuildOptions& options) {
   accel::TreeWriter writer(&tree.nodes, &tree.lists, source);
   if (input.ids.empty()) {
     std::vector<uint32_t> none;
-    writer.AddLeaf(none);
+    writer.AddLeaf(none, LeafCause::kFew);
   } else if (options.method == SplitMethod::kSah) {
     accel::BuildSahTree(input, options.traversal_cost, options.isect_cost, options.empty_bonus,
                         options.max_leaf_prims, options.perfect_splits, &writer, options.threads);
@@ -143,6 +143,8 @@ KdTree BuildKdTree(const Scene& scene, const BuildOptions& options) {
                            &writer);
   }
   tree.stats = ComputeTreeStats(tree, input.ids.size(), options);
+  tree.stats.leaf_causes = writer.causes();
+  tree.stats.leaf_causes.recorded = true;
   tree.stats.degenerate_triangles = degenerate;
   tree.stats.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

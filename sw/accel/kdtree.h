@@ -3,6 +3,7 @@
 // child adjacent to its parent, leaves pointing into one shared list array.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -43,6 +44,49 @@ int DefaultMaxDepth(size_t triangles);
 SplitMethod ParseSplitMethod(const std::string& name);  // "sah", "median", "midpoint"
 const char* SplitMethodName(SplitMethod m);
 
+// Why the builder made a node a leaf (the first rule that held):
+enum class LeafCause : uint8_t {
+  kFew,       // at most max_leaf_prims triangles (empty leaves too)
+  kDepth,     // the depth limit
+  kNoPlane,   // no candidate plane inside the cell: every triangle spans it on every axis
+  kNoGain,    // SAH: no split cheaper than the leaf, kMaxBadRefines times on the path;
+              // median/midpoint: the split would put every triangle on both sides
+  kHopeless,  // SAH: the best split costs over 4x the leaf in a node of < 16 triangles
+};
+inline constexpr int kLeafCauseCount = 5;
+const char* LeafCauseName(LeafCause c);  // "few", "depth", "no_plane", "no_gain", "hopeless"
+
+// A leaf of more than this many triangles counts as large in LeafCauses.
+inline constexpr uint32_t kLargeLeafPrims = 16;
+
+struct LeafCauseCount {
+  uint64_t leaves = 0;
+  uint64_t references = 0;  // triangles listed in those leaves
+  uint64_t large = 0;       // leaves of more than kLargeLeafPrims triangles
+  uint32_t largest = 0;     // triangles in the largest of them
+};
+
+struct LeafCauses {
+  LeafCauseCount by_cause[kLeafCauseCount];
+  bool recorded = false;  // false: the tree was not built here (e.g. read back)
+
+  void Add(LeafCause c, size_t prims) {
+    LeafCauseCount& n = by_cause[static_cast<int>(c)];
+    ++n.leaves;
+    n.references += prims;
+    n.large += prims > kLargeLeafPrims;
+    if (prims > n.largest) n.largest = static_cast<uint32_t>(prims);
+  }
+  void Merge(const LeafCauses& o) {
+    for (int i = 0; i < kLeafCauseCount; ++i) {
+      by_cause[i].leaves += o.by_cause[i].leaves;
+      by_cause[i].references += o.by_cause[i].references;
+      by_cause[i].large += o.by_cause[i].large;
+      by_cause[i].largest = std::max(by_cause[i].largest, o.by_cause[i].largest);
+    }
+  }
+};
+
 struct TreeStats {
   uint32_t nodes = 0;
   uint32_t inner_nodes = 0;
@@ -57,6 +101,7 @@ struct TreeStats {
   double sah_cost = 0;            // expected cost of the finished tree (pbrt's cost model)
   uint32_t degenerate_triangles = 0;  // left out of the tree
   double build_seconds = 0;
+  LeafCauses leaf_causes;  // recorded by the builder, not recounted from the nodes
 };
 
 struct KdTree {

@@ -112,6 +112,7 @@ struct DeferredSubtree {
   uint32_t top_index = 0;  // its placeholder among the top nodes
   std::vector<img::Node> nodes;  // built by the worker, indices relative
   std::vector<uint32_t> lists;
+  LeafCauses causes;             // of its leaves
 };
 
 class SahBuilder {
@@ -194,14 +195,26 @@ class SahBuilder {
       return;
     }
     const double leaf_cost = static_cast<double>(isect_cost_) * node.count;
-    Split split;
-    if (node.count > static_cast<uint32_t>(max_leaf_prims_) && depth < in_.max_depth) {
-      split = FindSplit(node);
+    if (node.count <= static_cast<uint32_t>(max_leaf_prims_)) {
+      MakeLeaf(node, LeafCause::kFew);
+      return;
     }
-    if (split.axis >= 0 && !(split.cost < leaf_cost)) ++bad_refines;
-    if (split.axis < 0 || bad_refines >= kMaxBadRefines ||
-        (split.cost > 4.0 * leaf_cost && node.count < 16)) {
-      MakeLeaf(node);
+    if (depth >= in_.max_depth) {
+      MakeLeaf(node, LeafCause::kDepth);
+      return;
+    }
+    const Split split = FindSplit(node);
+    if (split.axis < 0) {
+      MakeLeaf(node, LeafCause::kNoPlane);
+      return;
+    }
+    if (!(split.cost < leaf_cost)) ++bad_refines;
+    if (bad_refines >= kMaxBadRefines) {
+      MakeLeaf(node, LeafCause::kNoGain);
+      return;
+    }
+    if (split.cost > 4.0 * leaf_cost && node.count < 16) {
+      MakeLeaf(node, LeafCause::kHopeless);
       return;
     }
     const size_t child_start[3] = {arena_[0].size(), arena_[1].size(), arena_[2].size()};
@@ -235,13 +248,13 @@ class SahBuilder {
     deferred_->push_back(std::move(d));
   }
 
-  void MakeLeaf(const NodeEvents& node) {
+  void MakeLeaf(const NodeEvents& node, LeafCause cause) {
     leaf_ids_.clear();
     const uint64_t* ev = arena_[0].data();
     for (size_t i = node.begin[0]; i < node.end[0]; ++i) {
       if (EventKind(ev[i]) != kEnd) leaf_ids_.push_back(EventTri(ev[i]));
     }
-    writer_->AddLeaf(leaf_ids_);
+    writer_->AddLeaf(leaf_ids_, cause);
   }
 
   // Candidate planes per axis: the event positions strictly inside the cell,
@@ -548,6 +561,7 @@ void BuildSahTree(const BuildInput& input, float traversal_cost, float isect_cos
                        &top_writer);
     builder.DeferAt(depth, kMinDeferredTriangles, &subtrees);
     builder.Run();
+    writer->MergeCauses(top_writer.causes());
   }
   // Largest first, so the threads finish together.
   std::vector<size_t> order(subtrees.size());
@@ -563,6 +577,7 @@ void BuildSahTree(const BuildInput& input, float traversal_cost, float isect_cos
         TreeWriter sub_writer(&d.nodes, &d.lists, writer->source());
         SahBuilder(input, traversal_cost, isect_cost, empty_bonus, max_leaf_prims, perfect_splits, &sub_writer)
             .RunSubtree(d);
+        d.causes = sub_writer.causes();
       } catch (...) {
         errors[order[k]] = std::current_exception();
       }
@@ -575,6 +590,7 @@ void BuildSahTree(const BuildInput& input, float traversal_cost, float isect_cos
   for (const std::exception_ptr& e : errors) {
     if (e) std::rethrow_exception(e);  // the first subtree's in tree order, as the serial build would
   }
+  for (const DeferredSubtree& d : subtrees) writer->MergeCauses(d.causes);
   Assemble(top, top_lists, subtrees, writer);
 }
 

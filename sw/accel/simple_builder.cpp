@@ -54,13 +54,13 @@ class SimpleBuilder {
   void Build(size_t begin, size_t end, const Box& cell, int depth) {
     const size_t n = end - begin;
     if (n <= static_cast<size_t>(max_leaf_prims_) || depth >= in_.max_depth) {
-      MakeLeaf(begin, end);
+      MakeLeaf(begin, end, n <= static_cast<size_t>(max_leaf_prims_) ? LeafCause::kFew : LeafCause::kDepth);
       return;
     }
     const int axis = LongestAxis(cell);
     const float s = median_ ? MedianSplit(begin, end, cell, axis) : Midpoint(cell, axis);
     if (!StrictlyInside(s, cell, axis)) {
-      MakeLeaf(begin, end);
+      MakeLeaf(begin, end, LeafCause::kNoPlane);
       return;
     }
     // Children go on top of the id stack: below ids, then above ids.
@@ -77,7 +77,7 @@ class SimpleBuilder {
     const size_t above_end = ids_.size();
     if (above_begin - below_begin == n && above_end - above_begin == n) {
       ids_.resize(below_begin);
-      MakeLeaf(begin, end);
+      MakeLeaf(begin, end, LeafCause::kNoGain);
       return;
     }
     Box below_cell = cell;
@@ -91,9 +91,9 @@ class SimpleBuilder {
     ids_.resize(below_begin);
   }
 
-  void MakeLeaf(size_t begin, size_t end) {
+  void MakeLeaf(size_t begin, size_t end, LeafCause cause) {
     leaf_ids_.assign(ids_.begin() + begin, ids_.begin() + end);
-    writer_->AddLeaf(leaf_ids_);
+    writer_->AddLeaf(leaf_ids_, cause);
   }
 
   const BuildInput& in_;

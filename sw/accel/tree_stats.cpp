@@ -75,4 +75,15 @@ TreeStats ComputeTreeStats(const KdTree& tree, size_t triangles, const BuildOpti
   return st;
 }
 
+const char* LeafCauseName(LeafCause c) {
+  switch (c) {
+    case LeafCause::kFew: return "few";
+    case LeafCause::kDepth: return "depth";
+    case LeafCause::kNoPlane: return "no_plane";
+    case LeafCause::kNoGain: return "no_gain";
+    case LeafCause::kHopeless: return "hopeless";
+  }
+  return "unknown";
+}
+
 }  // namespace kdrt

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <string>
 
 #include "common/error.h"
 #include "scenes/gen/generators.h"
@@ -65,6 +66,45 @@ PreparedScene PrepareScene(Scene scene, const BuildOptions& build) {
   return p;
 }
 
+namespace {
+
+// Leaf causes in the builder's order, with the names people read.
+constexpr const char* kCauseText[kLeafCauseCount] = {"few triangles", "depth limit", "no plane",
+                                                     "no cheaper split", "hopeless split"};
+
+nlohmann::json LeafCausesJson(const LeafCauses& c) {
+  if (!c.recorded) return nullptr;
+  nlohmann::json j = {{"large_leaf_prims", kLargeLeafPrims}};
+  for (int i = 0; i < kLeafCauseCount; ++i) {
+    const LeafCauseCount& n = c.by_cause[i];
+    j[LeafCauseName(static_cast<LeafCause>(i))] = {
+        {"leaves", n.leaves}, {"references", n.references}, {"large", n.large}, {"largest", n.largest}};
+  }
+  return j;
+}
+
+void PrintLeafCauses(const LeafCauses& c) {
+  if (!c.recorded) return;
+  std::string all, large;
+  uint64_t large_total = 0;
+  for (int i = 0; i < kLeafCauseCount; ++i) {
+    const LeafCauseCount& n = c.by_cause[i];
+    if (n.leaves == 0) continue;
+    all += (all.empty() ? "" : ", ") + std::string(kCauseText[i]) + " " + std::to_string(n.leaves);
+    if (n.large == 0) continue;
+    large_total += n.large;
+    large += (large.empty() ? "" : ", ") + std::string(kCauseText[i]) + " " + std::to_string(n.large) +
+             " (largest " + std::to_string(n.largest) + ")";
+  }
+  std::printf("leaf causes    %s\n", all.c_str());
+  if (large_total > 0) {
+    std::printf("large leaves   %llu over %u triangles: %s\n", static_cast<unsigned long long>(large_total),
+                kLargeLeafPrims, large.c_str());
+  }
+}
+
+}  // namespace
+
 nlohmann::json TreeStatsJson(const TreeStats& s) {
   return {{"nodes", s.nodes},
           {"inner_nodes", s.inner_nodes},
@@ -78,7 +118,8 @@ nlohmann::json TreeStatsJson(const TreeStats& s) {
           {"refs_per_triangle", s.refs_per_triangle},
           {"sah_cost", s.sah_cost},
           {"degenerate_triangles", s.degenerate_triangles},
-          {"build_seconds", s.build_seconds}};
+          {"build_seconds", s.build_seconds},
+          {"leaf_causes", LeafCausesJson(s.leaf_causes)}};
 }
 
 void PrintTreeStats(const PreparedScene& p) {
@@ -104,6 +145,7 @@ void PrintTreeStats(const PreparedScene& p) {
               s.empty_leaves);
   std::printf("depth          max %u, avg leaf %.2f\n", s.max_depth, s.avg_leaf_depth);
   std::printf("leaf triangles max %u, avg %.2f (non-empty leaves)\n", s.max_leaf_prims, s.avg_leaf_prims);
+  PrintLeafCauses(s.leaf_causes);
   std::printf("references     %llu (%.2f per triangle)\n", static_cast<unsigned long long>(s.references),
               s.refs_per_triangle);
   std::printf("SAH cost       %.2f\n", s.sah_cost);

@@ -210,8 +210,13 @@ TEST_F(Cli, ATreeAPackedFormatCannotHoldIsSaid) {
   EXPECT_NE(r.output.find("kdrt: note: no fp16 image: "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("16-bit count of a fp16 image node"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(" fp16 -"), std::string::npos) << r.output;
+  // Why the leaf stays whole: no plane can split 70,000 copies.
+  EXPECT_NE(r.output.find("large leaves   1 over 16 triangles: no plane 1 (largest 70000)"), std::string::npos)
+      << r.output;
   std::ifstream f(Path("info.json"));
   const nlohmann::json j = nlohmann::json::parse(f);
+  EXPECT_EQ(j["tree"]["leaf_causes"]["no_plane"]["largest"].get<uint32_t>(), 70000u);
+  EXPECT_EQ(j["tree"]["leaf_causes"]["no_plane"]["large"].get<uint32_t>(), 1u);
   EXPECT_TRUE(j["images"]["bf16"].contains("error"));
   EXPECT_GT(j["images"]["fp24"]["bytes"].get<uint64_t>(), 0u);
   fs::remove(Path("info.json"));
