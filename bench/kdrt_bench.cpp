@@ -40,6 +40,8 @@ int main(int argc, char** argv) {
   std::string sizes = "1000,30000,200000,800000";
   int res = 512;
   std::string json_path;
+  BuildOptions build;  // one build thread, as Embree's
+  app.add_flag("--perfect-splits", build.perfect_splits, "Build the kd-trees with perfect splits (clipped boxes)");
   app.add_option("--scenes", scenes, "Comma-separated generator names")->capture_default_str();
   app.add_option("--sizes", sizes, "Comma-separated triangle counts")->capture_default_str();
   app.add_option("--res", res, "Image width = height")->capture_default_str();
@@ -47,13 +49,13 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   nlohmann::json rows = nlohmann::json::array();
-  std::printf("%-8s %9s | %9s %9s %6s | %9s %9s %6s | %6s\n", "scene", "tris", "kd build", "emb build", "ratio",
-              "kd Mray/s", "emb Mray/s", "ratio", "agree");
-  std::printf("%s\n", std::string(96, '-').c_str());
+  std::printf("%-8s %9s | %8s %6s %8s | %9s %9s %6s | %9s %9s %6s | %6s\n", "scene", "tris", "refs/tri",
+              "max", "tests/r", "kd build", "emb build", "ratio", "kd Mray/s", "emb Mray/s", "ratio", "agree");
+  std::printf("%s\n", std::string(123, '-').c_str());
   for (const std::string& name : Split(scenes)) {
     for (const std::string& size_text : Split(sizes)) {
       const Scene scene = GenerateScene(name, std::stoi(size_text));
-      const FramedImage framed = BuildFramedImage(scene, BuildOptions{});
+      const FramedImage framed = BuildFramedImage(scene, build);
       const KdTree& tree = framed.tree;
       const std::vector<uint8_t>& bytes = framed.bytes;
       const ImageView image(bytes);
@@ -83,13 +85,19 @@ int main(int argc, char** argv) {
 
       const double n = static_cast<double>(rays.size());
       const double kd_mrays = n / ts.seconds * 1e-6, emb_mrays = n / embree_seconds * 1e-6;
-      std::printf("%-8s %9zu | %8.3fs %8.3fs %6.2f | %9.2f %9.2f %6.2f | %5.2f%%\n", name.c_str(),
-                  scene.triangles.size(), tree.stats.build_seconds, embree.build_seconds(),
+      std::printf("%-8s %9zu | %8.2f %6u %8.2f | %8.3fs %8.3fs %6.2f | %9.2f %9.2f %6.2f | %5.2f%%\n", name.c_str(),
+                  scene.triangles.size(), tree.stats.refs_per_triangle, tree.stats.max_leaf_prims,
+                  ts.totals.tri_tests / static_cast<double>(rays.size()), tree.stats.build_seconds, embree.build_seconds(),
                   tree.stats.build_seconds / embree.build_seconds(), kd_mrays, emb_mrays, kd_mrays / emb_mrays,
                   100.0 * agree / n);
       std::fflush(stdout);
       rows.push_back({{"scene", name},
                       {"triangles", scene.triangles.size()},
+                      {"perfect_splits", build.perfect_splits},
+                      {"refs_per_triangle", tree.stats.refs_per_triangle},
+                      {"max_leaf_prims", tree.stats.max_leaf_prims},
+                      {"avg_leaf_prims", tree.stats.avg_leaf_prims},
+                      {"per_ray_leaves", ts.totals.leaves / n},
                       {"kd_build_seconds", tree.stats.build_seconds},
                       {"embree_build_seconds", embree.build_seconds()},
                       {"kd_mrays_per_second", kd_mrays},
