@@ -24,6 +24,8 @@ const GeneratorEntry kGenerators[] = {
     {"tree", "branching tree of tapered cylinders with leaves at the tips", gen::GenerateTree},
     {"gears", "grid of meshing toothed gears, concave faces fanned into slivers, over a floor",
      gen::GenerateGears},
+    {"strips", "pentagonal rings of long thin cylinder strips with spheres at the corners (SPD rings), over a floor",
+     gen::GenerateStrips},
 };
 
 const GeneratorEntry& Find(const std::string& name) {
