@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <deque>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -12,29 +12,30 @@
 namespace kdrt::sim {
 namespace {
 
-// A set of threads (up to 256, rt_core's limit) as bit words.
+// A set of threads (up to 256, rt_core's limit) as bit words, held inline:
+// the arbiters search these every cycle.
 class ThreadSet {
  public:
-  explicit ThreadSet(int n) : n_(n), w_((n + 63) / 64, 0) {}
-  void Clear() { std::fill(w_.begin(), w_.end(), 0); }
+  ThreadSet() = default;
+  explicit ThreadSet(int n) : words_((n + 63) / 64) {}
   void Set(int i) { w_[i >> 6] |= uint64_t{1} << (i & 63); }
   void Reset(int i) { w_[i >> 6] &= ~(uint64_t{1} << (i & 63)); }
   // The lowest member at or above `from`, or -1.
   int NextFrom(int from) const {
-    if (from >= n_) return -1;
-    size_t k = static_cast<size_t>(from) >> 6;
+    int k = from >> 6;
+    if (k >= words_) return -1;
     uint64_t w = w_[k] & (~uint64_t{0} << (from & 63));
     for (;;) {
-      if (w) return static_cast<int>(k * 64 + __builtin_ctzll(w));
-      if (++k == w_.size()) return -1;
+      if (w) return k * 64 + __builtin_ctzll(w);
+      if (++k == words_) return -1;
       w = w_[k];
     }
   }
   int Lowest() const { return NextFrom(0); }
 
  private:
-  int n_;
-  std::vector<uint64_t> w_;
+  int words_ = 4;
+  std::array<uint64_t, 4> w_{};
 };
 
 // rt_rr_arb: the first requester after the last grant; the pointer moves on
@@ -54,10 +55,35 @@ class RrArb {
   int last_;
 };
 
+// A FIFO of bounded size in a power-of-two ring (no allocation per entry).
+// The bound is the caller's proof; push() checks it all the same.
+template <typename T>
+class Ring {
+ public:
+  explicit Ring(size_t bound) {
+    size_t cap = 1;
+    while (cap < bound) cap <<= 1;
+    buf_.resize(cap);
+    mask_ = cap - 1;
+  }
+  bool empty() const { return head_ == tail_; }
+  const T& front() const { return buf_[head_ & mask_]; }
+  void pop() { ++head_; }
+  void push(const T& v) {
+    if (tail_ - head_ > mask_) throw std::logic_error("fast model: ring overflow");
+    buf_[tail_++ & mask_] = v;
+  }
+
+ private:
+  std::vector<T> buf_;
+  size_t mask_ = 0, head_ = 0, tail_ = 0;
+};
+
 // rt_cache at the level of its registers (the header comment of
 // rtl/rt_cache.sv): Eval() is the combinational part of one cycle from the
 // registered state, Commit() the clock edge. Miss registers are tracked as
-// bit masks (rt_core allows at most 64): valid, beats left to send, line in.
+// bit masks (rt_core allows at most 64): valid, beats left to send, line in,
+// no room for another target.
 class Cache {
  public:
   struct Req {
@@ -69,74 +95,111 @@ class Cache {
   };
 
   Cache(int lines, int line_beats, int mshrs, int targets, bool miss_port)
-      : line_mask_(static_cast<uint64_t>(lines) - 1), beats_(line_beats), targets_(targets), miss_port_(miss_port),
-        all_mshrs_(mshrs >= 64 ? ~uint64_t{0} : (uint64_t{1} << mshrs) - 1), line_valid_(lines, 0),
-        line_key_(lines, 0), mshr_(mshrs) {}
+      : line_mask_(static_cast<uint64_t>(lines) - 1), beats_(line_beats), targets_(targets), mshrs_(mshrs),
+        miss_port_(miss_port), all_mshrs_(mshrs >= 64 ? ~uint64_t{0} : (uint64_t{1} << mshrs) - 1), lines_(lines),
+        mshr_(mshrs), keys_(mshrs, 0), tags_(static_cast<size_t>(mshrs) * targets) {}
 
   // Registered outputs, valid before Eval().
-  bool resp_valid() const { return hit_valid_ || del_valid_; }
+  bool resp_valid() const { return hit_valid_ | del_valid_; }
   uint64_t resp_tag() const { return del_valid_ ? del_tag_ : hit_tag_; }
-  bool mem_valid() const { return held_ || unsent_ != 0; }
+  bool mem_valid() const { return held_ | (unsent_ != 0); }
   uint64_t mem_addr() const { return mshr_[SendIdx()].addr + 16u * mshr_[SendIdx()].sent; }
   int mem_id() const { return SendIdx() * 4 + static_cast<int>(mshr_[SendIdx()].sent); }
 
   // Nothing can happen here until a memory beat arrives or a request comes:
   // no response shown, no beat to send, no line ready to answer.
-  bool Quiet() const { return !hit_valid_ && !del_valid_ && !held_ && unsent_ == 0 && done_ == 0; }
+  bool Quiet() const { return !(hit_valid_ | del_valid_ | held_ | ((unsent_ | done_) != 0)); }
 
+  // `r2` is looked at only on the miss-only port (miss_port).
   void Eval(const Req& r1, const Req& r2, bool resp_ready) {
-    c_.out_take = c_.deliver = c_.ready1 = c_.ready2 = c_.accept = c_.accept2 = false;
-    c_.hit = c_.m_take = false;
-    c_.send_valid = mem_valid();
-    c_.send_idx = c_.send_valid ? SendIdx() : -1;
-    if (!r1.valid && !r2.valid && valid_ == 0 && !hit_valid_ && !del_valid_) return;
-    const uint64_t free_mask = all_mshrs_ & ~valid_;
-    const int free_idx = free_mask ? __builtin_ctzll(free_mask) : -1;
-    const int done_idx = done_ ? __builtin_ctzll(done_) : -1;
-    int join_idx = -1, join2_idx = -1;
-    bool any_match = false, any_match2 = false;
+    c_.out_take = resp_valid() & resp_ready;
+    // A filled line goes out through the delivery register when it is free
+    // (or being emptied) and no stalled hit keeps the output.
+    c_.deliver = (done_ != 0) & (!del_valid_ | c_.out_take) & !(hit_valid_ & !del_valid_ & !resp_ready);
+    c_.ready1 = c_.ready2 = c_.hit = c_.m_take = false;
+    // Most cycles of a cache bring no request: nothing to look up or match.
+    if (r1.valid | (r2.valid & miss_port_)) EvalRequests(r1, r2);
+  }
+  // Requests taken this cycle (the caches are always ready when they take).
+  bool accept1() const { return c_.ready1; }
+  bool accept2() const { return c_.ready2; }
+
+  // The clock edge: `mem_taken` (the arbiter took this cache's beat),
+  // `resp_id` (>= 0: the memory's beat for {register, beat}).
+  void Commit(bool mem_taken, int resp_id) {
+    // Nothing to register: no response taken or made, no miss taken, no
+    // beat offered (so none taken or held) and none come in.
+    if (!(c_.out_take | c_.deliver | c_.hit | c_.m_take | mem_valid() | (resp_id >= 0))) return;
+    CommitBusy(mem_taken, resp_id);
+  }
+
+  const Events& events() const { return ev_; }
+
+ private:
+  struct Mshr {
+    uint64_t addr = 0;
+    uint32_t sent = 0, got = 0;
+    int cnt = 0, out = 0;
+  };
+  struct Line {
+    bool valid = false;
+    uint64_t key = 0;
+  };
+  // What Eval() decided, for Commit().
+  struct Comb {
+    Req m;
+    uint64_t hit_tag = 0;
+    bool out_take = false, deliver = false, ready1 = false, ready2 = false;
+    bool hit = false, m_take = false, m_join = false;
+    int m_join_idx = -1, free_idx = -1;
+  };
+
+  // The miss registers in use for `key`.
+  uint64_t Matches(uint64_t key) const {
+    uint64_t mask = 0;
     for (uint64_t v = valid_; v; v &= v - 1) {
       const int m = __builtin_ctzll(v);
-      const Mshr& s = mshr_[m];
-      const bool joinable = !((done_ >> m) & 1) && s.cnt < targets_;
-      if (r1.valid && s.key == r1.key) {
-        any_match = true;
-        if (joinable && join_idx < 0) join_idx = m;
-      }
-      if (r2.valid && s.key == r2.key) {
-        any_match2 = true;
-        if (joinable && join2_idx < 0) join2_idx = m;
-      }
+      mask |= static_cast<uint64_t>(keys_[m] == key) << m;
     }
-    const bool lookup_hit = r1.valid && Present(r1.key), lookup2_hit = r2.valid && Present(r2.key);
-    c_.out_take = resp_valid() && resp_ready;
-    const bool hit_free = !hit_valid_ || (c_.out_take && !del_valid_);
-    const bool del_free = !del_valid_ || c_.out_take;
-    c_.deliver = done_idx >= 0 && del_free && !(hit_valid_ && !del_valid_ && !resp_ready);
-    c_.done_idx = done_idx;
+    return mask;
+  }
+
+  void EvalRequests(const Req& r1, const Req& r2) {
+    const bool use_r2 = r2.valid && miss_port_;
+    const uint64_t free_mask = all_mshrs_ & ~valid_;
+    const int free_idx = free_mask ? __builtin_ctzll(free_mask) : -1;
+    // A request joins the lowest register of its line still taking targets
+    // (not filled, not full).
+    const uint64_t joinable = valid_ & ~done_ & ~full_;
     if (r1.valid) {
+      // A present line is a hit whatever the miss registers hold.
+      const bool lookup_hit = Present(r1.key);
+      const uint64_t match = lookup_hit ? 0 : Matches(r1.key);
+      const int join_idx = (match & joinable) ? __builtin_ctzll(match & joinable) : -1;
+      const bool hit_free = !hit_valid_ || (c_.out_take && !del_valid_);
       const bool hit_ok = lookup_hit && hit_free;
       const bool join_ok = !lookup_hit && join_idx >= 0;
-      const bool alloc_ok = !lookup_hit && !any_match && free_idx >= 0;
+      const bool alloc_ok = !lookup_hit && !match && free_idx >= 0;
       c_.ready1 = hit_ok || join_ok || alloc_ok;
-      c_.accept = c_.ready1;
       if (!c_.ready1) ++ev_.wait;
-      if (!lookup_hit && any_match && join_idx < 0) ++ev_.wait_inflight;
-      if (!lookup_hit && !any_match && free_idx < 0) ++ev_.wait_mshr;
-      c_.hit = c_.accept && lookup_hit;
-      if (c_.accept && !lookup_hit) {
+      if (!lookup_hit && match && join_idx < 0) ++ev_.wait_inflight;
+      if (!lookup_hit && !match && free_idx < 0) ++ev_.wait_mshr;
+      c_.hit = c_.ready1 && lookup_hit;
+      if (c_.ready1 && !lookup_hit) {
         c_.m_take = true;
         c_.m_join = join_ok;
         c_.m_join_idx = join_idx;
         c_.m = r1;
       }
     }
-    if (r2.valid && miss_port_ && !c_.m_take) {
+    if (use_r2 && !c_.m_take) {
+      const bool lookup2_hit = Present(r2.key);
+      const uint64_t match2 = lookup2_hit ? 0 : Matches(r2.key);
+      const int join2_idx = (match2 & joinable) ? __builtin_ctzll(match2 & joinable) : -1;
       const bool join2_ok = !lookup2_hit && join2_idx >= 0;
-      const bool alloc2_ok = !lookup2_hit && !any_match2 && free_idx >= 0;
+      const bool alloc2_ok = !lookup2_hit && !match2 && free_idx >= 0;
       c_.ready2 = join2_ok || alloc2_ok;
-      c_.accept2 = c_.ready2;
-      if (c_.accept2) {
+      if (c_.ready2) {
         c_.m_take = true;
         c_.m_join = join2_ok;
         c_.m_join_idx = join2_idx;
@@ -151,15 +214,12 @@ class Cache {
     if (c_.m_take) ++ev_.miss;
     if (c_.m_take && c_.m_join) ++ev_.merge;
   }
-  bool ready1() const { return c_.ready1; }
-  bool ready2() const { return c_.ready2; }
-  bool accept1() const { return c_.accept; }
-  bool accept2() const { return c_.accept2; }
-  bool out_take() const { return c_.out_take; }
 
-  // The clock edge: `mem_taken` (the arbiter took this cache's beat),
-  // `resp_id` (>= 0: the memory's beat for {register, beat}).
-  void Commit(bool mem_taken, int resp_id) {
+  void CommitBusy(bool mem_taken, int resp_id) {
+    // The registered state this cycle ran on, before this edge changes it.
+    const bool send_valid = mem_valid();
+    const int send_idx = send_valid ? SendIdx() : -1;
+    const int done_idx = done_ ? __builtin_ctzll(done_) : -1;
     if (c_.out_take && del_valid_) {
       del_valid_ = false;
     } else if (c_.out_take) {
@@ -170,26 +230,23 @@ class Cache {
       hit_tag_ = c_.hit_tag;
     }
     if (c_.m_take) {
-      if (c_.m_join) {
-        Mshr& s = mshr_[c_.m_join_idx];
-        s.tags.push_back(c_.m.tag);
-        ++s.cnt;
-      } else {
-        const int f = c_.free_idx;
-        Mshr& s = mshr_[f];
-        s.key = c_.m.key;
+      const int idx = c_.m_join ? c_.m_join_idx : c_.free_idx;
+      Mshr& s = mshr_[idx];
+      if (!c_.m_join) {
+        keys_[idx] = c_.m.key;
         s.addr = c_.m.addr;
         s.sent = s.got = 0;
-        s.cnt = 1;
+        s.cnt = 0;
         s.out = 0;
-        s.tags.assign(1, c_.m.tag);
-        valid_ |= uint64_t{1} << f;
-        unsent_ |= uint64_t{1} << f;
+        valid_ |= uint64_t{1} << idx;
+        unsent_ |= uint64_t{1} << idx;
       }
+      tags_[static_cast<size_t>(idx) * targets_ + s.cnt] = c_.m.tag;
+      if (++s.cnt == targets_) full_ |= uint64_t{1} << idx;
     }
     if (mem_taken) {
-      Mshr& s = mshr_[c_.send_idx];
-      if (++s.sent == static_cast<uint32_t>(beats_)) unsent_ &= ~(uint64_t{1} << c_.send_idx);
+      Mshr& s = mshr_[send_idx];
+      if (++s.sent == static_cast<uint32_t>(beats_)) unsent_ &= ~(uint64_t{1} << send_idx);
     }
     if (resp_id >= 0) {
       const int m = resp_id / 4;
@@ -198,54 +255,39 @@ class Cache {
       if (s.got == (1u << beats_) - 1) done_ |= uint64_t{1} << m;
     }
     if (c_.deliver) {
-      const int d = c_.done_idx;
+      const int d = done_idx;
       Mshr& s = mshr_[d];
-      del_tag_ = s.tags[s.out];
+      del_tag_ = tags_[static_cast<size_t>(d) * targets_ + s.out];
       ++s.out;
-      const size_t line = s.key & line_mask_;
-      line_valid_[line] = 1;
-      line_key_[line] = s.key;
+      lines_[keys_[d] & line_mask_] = {true, keys_[d]};
       del_valid_ = true;
       if (s.out == s.cnt) {
-        valid_ &= ~(uint64_t{1} << d);
-        done_ &= ~(uint64_t{1} << d);
+        const uint64_t keep = ~(uint64_t{1} << d);
+        valid_ &= keep;
+        done_ &= keep;
+        full_ &= keep;
       }
     }
-    held_ = c_.send_valid && !mem_taken;
-    held_idx_ = c_.send_idx;
+    held_ = send_valid && !mem_taken;
+    held_idx_ = send_idx;
   }
 
-  const Events& events() const { return ev_; }
-
- private:
-  struct Mshr {
-    uint64_t key = 0, addr = 0;
-    uint32_t sent = 0, got = 0;
-    int cnt = 0, out = 0;
-    std::vector<uint64_t> tags;
-  };
-  struct Comb {
-    Req m;
-    uint64_t hit_tag = 0;
-    bool out_take = false, deliver = false, ready1 = false, ready2 = false, accept = false, accept2 = false;
-    bool hit = false, m_take = false, m_join = false, send_valid = false;
-    int done_idx = -1, m_join_idx = -1, free_idx = -1, send_idx = -1;
-  };
-
   bool Present(uint64_t key) const {
-    const size_t line = key & line_mask_;
-    return line_valid_[line] && line_key_[line] == key;
+    const Line& l = lines_[key & line_mask_];
+    return l.valid && l.key == key;
   }
   int SendIdx() const { return held_ ? held_idx_ : __builtin_ctzll(unsent_); }
 
   uint64_t line_mask_;
-  int beats_, targets_;
+  int beats_, targets_, mshrs_;
   bool miss_port_;
   uint64_t all_mshrs_;
-  std::vector<uint8_t> line_valid_;
-  std::vector<uint64_t> line_key_;
+  std::vector<Line> lines_;
   std::vector<Mshr> mshr_;
-  uint64_t valid_ = 0, unsent_ = 0, done_ = 0;  // miss registers: in use, beats to send, line in
+  std::vector<uint64_t> keys_;  // each miss register's line
+  std::vector<uint64_t> tags_;  // the merged requests of miss register m: [m * targets_, + cnt)
+  // Miss registers: in use, beats to send, line in, targets full.
+  uint64_t valid_ = 0, unsent_ = 0, done_ = 0, full_ = 0;
   bool hit_valid_ = false, del_valid_ = false, held_ = false;
   uint64_t hit_tag_ = 0, del_tag_ = 0;
   int held_idx_ = 0;
@@ -259,10 +301,18 @@ constexpr int kBitRayIn = PerfBit("ray_in"), kBitRayOut = PerfBit("ray_out"), kB
 
 enum State : uint8_t { kFree, kSetup, kFetch, kWaitNode, kTrav, kLeaf, kExit, kDone };
 
+// A step of a ray's path: a node it fetches, decoded once, with its node
+// cache key and, for a leaf, its list entries (count kInner: an inner node).
+constexpr uint32_t kInner = 0xFFFFFFFFu;
+struct Step {
+  uint32_t key = 0;  // the node's 32-byte line (AddrWidth <= 32)
+  uint32_t count = kInner, first = 0;
+};
+
 struct Thread {
   State state = kFree;
-  uint32_t ray = 0;
-  size_t cursor = 0;  // the path entry fetched next (or being fetched)
+  const Step* next = nullptr;  // the path step fetched next (or being fetched)
+  const Step* end = nullptr;   // the end of the ray's path
   uint32_t remaining = 0, outstanding = 0;
 };
 
@@ -271,8 +321,17 @@ struct Job {
   uint32_t first, count;
 };
 
-// A fixed-latency pipeline's results: (cycle, thread), in order.
-using Pipe = std::deque<std::pair<uint64_t, int>>;
+// The memory arbiter (rt_rr_arb over the node, list and triangle caches):
+// the grant for [last grant][request bits], the first requester after the
+// last grant, or -1.
+constexpr int8_t kMemPick[3][8] = {
+    {-1, 0, 1, 1, 2, 2, 1, 1}, {-1, 0, 1, 0, 2, 2, 2, 2}, {-1, 0, 1, 0, 2, 0, 1, 0}};
+
+// A fixed-latency pipeline's result: the cycle it comes out and its thread.
+struct Stage {
+  uint64_t cycle;
+  int thread;
+};
 
 }  // namespace
 
@@ -299,25 +358,41 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     totals += c;
   }
   if (reference_totals) *reference_totals = totals;
-  // Every node a path visits, decoded once: inner (kInner) or a leaf's count
-  // and first list entry.
-  constexpr uint32_t kInner = 0xFFFFFFFFu;
+  // The paths decoded into steps, one array in ray order: the rays in flight
+  // are neighbours in it (a table by node index costs a cache miss a fetch).
   uint32_t max_node = 0;
+  size_t n_steps = 0;
   for (const auto& p : paths) {
     for (uint32_t n : p) max_node = std::max(max_node, n);
+    n_steps += p.size();
   }
-  std::vector<uint32_t> node_count(max_node + 1u, kInner), node_first(max_node + 1u, 0);
+  std::vector<Step> nodes(max_node + 1u);
   std::vector<uint8_t> decoded(max_node + 1u, 0);
-  for (const auto& p : paths) {
-    for (uint32_t i : p) {
-      if (decoded[i]) continue;
-      decoded[i] = 1;
-      const img::Node n = image.node(i);
-      if (n.IsLeaf()) {
-        node_count[i] = n.Count();
-        node_first[i] = n.FirstEntry();
+  std::vector<Step> steps;
+  steps.reserve(n_steps);
+  std::vector<size_t> path_begin(rays.size() + 1, 0);
+  for (size_t r = 0; r < rays.size(); ++r) {
+    for (uint32_t i : paths[r]) {
+      if (!decoded[i]) {
+        decoded[i] = 1;
+        nodes[i].key = static_cast<uint32_t>((h.node_offset + layout.NodeBeatOffset(i)) >> 5);
+        const img::Node n = image.node(i);
+        if (n.IsLeaf()) {
+          nodes[i].count = n.Count();
+          nodes[i].first = n.FirstEntry();
+        }
       }
+      steps.push_back(nodes[i]);
     }
+    path_begin[r + 1] = steps.size();
+    std::vector<uint32_t>().swap(paths[r]);
+  }
+  // The memory's timing only: the model reads no data, so the memory holds
+  // no image (a beat reads zeros, and costs no cache miss on the host). The
+  // image must fit all the same, as for the RTL.
+  MemoryModel memory(spec.memory);
+  if (image.size() > spec.memory.size_bytes) {
+    memory.LoadImage(std::vector<uint8_t>(image.data(), image.data() + image.size()));  // throws the RTL's error
   }
   // The simulation's own time, as the RTL harness counts it (without the
   // reference traversal, which both pay).
@@ -330,71 +405,79 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   Cache node(cfg[kNodeCacheLines], node_beats, cfg[kCacheMshrs], cfg[kCacheTargets], true);
   Cache list(cfg[kListCacheLines], list_beats, cfg[kCacheMshrs], cfg[kCacheTargets], false);
   Cache tri(cfg[kTriCacheLines], tri_beats, cfg[kCacheMshrs], cfg[kCacheTargets], false);
-  MemoryModel memory(spec.memory);
-  memory.LoadImage(std::vector<uint8_t>(image.data(), image.data() + image.size()));
+  Cache* caches[3] = {&node, &list, &tri};
 
   std::vector<Thread> th(threads);
-  RrArb fetch_arb(threads), fetch2_arb(threads), exit_arb(threads), out_arb(threads), mem_arb(3);
-  ThreadSet mreq(3);
-  std::vector<ThreadSet> in_set(8, ThreadSet(threads));  // the threads in each state
+  RrArb fetch_arb(threads), fetch2_arb(threads), exit_arb(threads), out_arb(threads);
+  int mem_last = 2;  // the memory arbiter's last grant (rt_rr_arb over the three caches)
+  // The threads in each state (the ray input and the arbiters pick from FREE,
+  // FETCH, EXIT and DONE), kept up to date by the moves below.
+  std::array<ThreadSet, 8> in_set;
+  in_set.fill(ThreadSet(threads));
   for (int t = 0; t < threads; ++t) in_set[kFree].Set(t);
-  // The state changes of this cycle, applied at the clock edge (one per thread at most).
-  std::vector<std::pair<int, State>> moves;
-  const auto Move = [&moves](int t, State to_state) { moves.emplace_back(t, to_state); };
   std::array<uint64_t, 8> in_state{};  // threads per state
   in_state[kFree] = static_cast<uint64_t>(threads);
-  Pipe clip_pipe, trav_pipe, isect_pipe;
-  std::deque<Job> jobs;  // rt_list_unit's FIFO: (push cycle + 1) visibility
-  std::deque<std::pair<uint64_t, Job>> jobs_in;
+  // The state changes of this cycle, applied at the clock edge (one per thread
+  // at most).
+  std::vector<std::pair<int, State>> moves(static_cast<size_t>(threads));
+  size_t n_moves = 0;
+  const auto Move = [&moves, &n_moves](int t, State to_state) { moves[n_moves++] = {t, to_state}; };
+  // The thread-state and busy counts accrue at the clock edges that change
+  // them: a thread's cycles in a state when it leaves it, the busy cycles
+  // when the core goes idle (and both at the end).
+  std::vector<uint64_t> since(static_cast<size_t>(threads), 0);  // in th[t].state since this cycle
+  uint64_t busy_since = 0;
+  auto& perf = out.result.perf;
+  const auto busy = [&in_state, threads] { return in_state[kFree] != static_cast<uint64_t>(threads); };
+  // The pipelines take at most one thread a cycle: setup/clip and traversal
+  // hold each thread at most once, intersection at most one test a cycle of
+  // its latency.
+  Ring<Stage> clip_pipe(threads), trav_pipe(threads), isect_pipe(lat_isect + 1);
+  Ring<Job> jobs(threads);  // rt_list_unit's FIFO (a thread has one job at most)
   bool list_req_valid = false;
   Job list_job{};
   uint32_t list_k = 0;  // entries of list_job requested so far
   size_t next_ray = 0, received = 0;
   bool record_valid = false;  // rt_hit_out's register: a record leaves this cycle
   uint64_t last_record = 0;
-  auto& perf = out.result.perf;
   const uint32_t* lists = image.lists();
+  const uint64_t tri_bytes = layout.TriangleBytes();
 
-  auto node_key = [&](uint32_t node_idx) { return (h.node_offset + layout.NodeBeatOffset(node_idx)) >> 5; };
-  std::vector<int> retired, leaf_done;
+  // The memory is asked for its beat only in the cycles it may have one ready
+  // when its token bucket comes out the same however the refill is split:
+  // with a bandwidth of whole 2^-20 bytes every sum is exact (and a sum too
+  // large to be exact is over the bucket's size anyway).
+  const double bw_units = std::ldexp(spec.memory.bytes_per_cycle, 20);
+  const bool lazy_memory = bw_units == std::floor(bw_units) && bw_units < std::ldexp(1.0, 40);
+  // LEAF -> EXIT once the tests issued and returned (registered counts) are
+  // both zero. Only a test issued or retired can make them so, at most one of
+  // each a cycle: the threads found at one clock edge move in the next cycle.
+  std::array<int, 2> leaf_done{};
+  int n_leaf_done = 0;
+  MemoryResponse resp;  // (its data is not used)
   uint64_t cycle = 0;
   for (;; ++cycle) {
     // Cycles in which nothing can change (every thread waits on a pipeline or
     // the memory, no cache has anything to show or send) are skipped to the
-    // next event; their thread-state and busy counts still accrue.
-    // LEAF: EXIT once the tests issued and returned (registered counts) are
-    // both zero; skipped cycles change no thread, so this holds after a skip.
-    leaf_done.clear();
-    for (int t = in_set[kLeaf].Lowest(); t >= 0; t = in_set[kLeaf].NextFrom(t + 1)) {
-      if (th[t].remaining == 0 && th[t].outstanding == 0) leaf_done.push_back(t);
-    }
+    // next event.
     const bool quiet = !record_valid && in_state[kFetch] == 0 && in_state[kExit] == 0 && in_state[kDone] == 0 &&
-                       !(in_state[kFree] > 0 && next_ray < rays.size()) && leaf_done.empty() && !list_req_valid &&
-                       jobs.empty() && jobs_in.empty() && node.Quiet() && list.Quiet() && tri.Quiet();
+                       !(in_state[kFree] > 0 && next_ray < rays.size()) && n_leaf_done == 0 && !list_req_valid &&
+                       jobs.empty() && node.Quiet() && list.Quiet() && tri.Quiet();
     if (quiet) {
       uint64_t next_event = memory.next_ready_cycle();
-      for (const Pipe* pipe : {&clip_pipe, &trav_pipe, &isect_pipe}) {
-        if (!pipe->empty()) next_event = std::min(next_event, pipe->front().first);
+      for (const Ring<Stage>* pipe : {&clip_pipe, &trav_pipe, &isect_pipe}) {
+        if (!pipe->empty()) next_event = std::min(next_event, pipe->front().cycle);
       }
-      if (next_event != UINT64_MAX && next_event > cycle) {
-        const uint64_t skip = next_event - cycle;
-        for (int k = 0; k < 8; ++k) out.result.thread_states[k] += in_state[k] * skip;
-        if (in_state[kFree] != static_cast<uint64_t>(threads)) perf[kBitBusy] += skip;
-        cycle = next_event;
-      }
+      if (next_event != UINT64_MAX && next_event > cycle) cycle = next_event;
     }
     // The memory's beat of this cycle, routed by {cache, register, beat}.
-    MemoryResponse resp;
     int resp_cache = -1, resp_id = -1;
-    if (memory.Respond(cycle, &resp)) {
+    if ((!lazy_memory || memory.next_ready_cycle() <= cycle) && memory.Respond(cycle, &resp)) {
       resp_cache = resp.tag >> 8;
       resp_id = resp.tag & 0xFF;
     }
-    // The registered states, as sets (kept up to date by the moves below).
-    const int alloc = in_set[kFree].Lowest();
-    for (int t : leaf_done) Move(t, kExit);
-    for (int k = 0; k < 8; ++k) out.result.thread_states[k] += in_state[k];
-    if (in_state[kFree] != static_cast<uint64_t>(threads)) ++perf[kBitBusy];
+    const int alloc = next_ray < rays.size() ? in_set[kFree].Lowest() : -1;
+    for (int k = 0; k < n_leaf_done; ++k) Move(leaf_done[k], kExit);
     // A record leaves the core (hit_valid_o): the harness takes it.
     if (record_valid) {
       ++received;
@@ -408,40 +491,51 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     }
 
     // Ray in: the lowest free thread takes the harness's next ray.
-    if (alloc >= 0 && next_ray < rays.size()) {
-      th[alloc].ray = static_cast<uint32_t>(next_ray++);
-      th[alloc].cursor = 0;
+    if (alloc >= 0) {
+      th[alloc].next = steps.data() + path_begin[next_ray];
+      th[alloc].end = steps.data() + path_begin[next_ray + 1];
+      ++next_ray;
       Move(alloc, kSetup);
-      clip_pipe.emplace_back(cycle + lat_clip, alloc);
+      clip_pipe.push({cycle + lat_clip, alloc});
       ++perf[kBitRayIn];
     }
     // Setup and clip done: into FETCH, or DONE when the ray misses the box.
-    while (!clip_pipe.empty() && clip_pipe.front().first == cycle) {
-      const int t = clip_pipe.front().second;
-      clip_pipe.pop_front();
-      Move(t, paths[th[t].ray].empty() ? kDone : kFetch);
+    if (!clip_pipe.empty() && clip_pipe.front().cycle == cycle) {
+      const int t = clip_pipe.front().thread;
+      clip_pipe.pop();
+      Move(t, th[t].next == th[t].end ? kDone : kFetch);
     }
-    while (!trav_pipe.empty() && trav_pipe.front().first == cycle) {
-      Move(trav_pipe.front().second, kFetch);
-      trav_pipe.pop_front();
+    if (!trav_pipe.empty() && trav_pipe.front().cycle == cycle) {
+      Move(trav_pipe.front().thread, kFetch);
+      trav_pipe.pop();
     }
-    // Retired tests (isect_valid) this cycle.
-    retired.clear();
-    while (!isect_pipe.empty() && isect_pipe.front().first == cycle) {
-      retired.push_back(isect_pipe.front().second);
-      isect_pipe.pop_front();
+    // The test retired this cycle (isect_valid), if any.
+    int retired = -1;
+    if (!isect_pipe.empty() && isect_pipe.front().cycle == cycle) {
+      retired = isect_pipe.front().thread;
+      isect_pipe.pop();
     }
 
     // Node fetches: two arbiters, the second offered to the miss-only port.
     ThreadSet& fetching = in_set[kFetch];
-    const int f1 = fetch_arb.Pick(fetching);
-    if (f1 >= 0) fetching.Reset(f1);
-    const int f2 = fetch2_arb.Pick(fetching);
-    if (f1 >= 0) fetching.Set(f1);
+    const int f1 = in_state[kFetch] > 0 ? fetch_arb.Pick(fetching) : -1;
     Cache::Req n1, n2;
-    if (f1 >= 0) n1 = {true, node_key(paths[th[f1].ray][th[f1].cursor]), 0, static_cast<uint64_t>(f1)};
-    if (f2 >= 0) n2 = {true, node_key(paths[th[f2].ray][th[f2].cursor]), 0, static_cast<uint64_t>(f2)};
-    for (Cache::Req* r : {&n1, &n2}) r->addr = r->key << 5;
+    int f2 = -1;
+    if (f1 >= 0) {
+      fetching.Reset(f1);
+      f2 = fetch2_arb.Pick(fetching);
+      fetching.Set(f1);
+      n1.valid = true;
+      n1.key = th[f1].next->key;
+      n1.addr = n1.key << 5;
+      n1.tag = static_cast<uint64_t>(f1);
+    }
+    if (f2 >= 0) {
+      n2.valid = true;
+      n2.key = th[f2].next->key;
+      n2.addr = n2.key << 5;
+      n2.tag = static_cast<uint64_t>(f2);
+    }
     // The node response (registered) fires: the units are always ready.
     const bool node_fire = node.resp_valid();
     const int node_tag = node_fire ? static_cast<int>(node.resp_tag()) : -1;
@@ -450,20 +544,23 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     fetch2_arb.Ack(f2);
     if (node.accept1()) Move(f1, kWaitNode);
     if (node.accept2()) Move(f2, kWaitNode);
+    Job new_job{};  // a leaf's job for the list unit's FIFO
+    bool has_new_job = false;
     if (node_fire) {
       Thread& t = th[node_tag];
-      const uint32_t i = paths[t.ray][t.cursor];
-      ++t.cursor;
-      if (node_count[i] == kInner) {
+      const Step& n = *t.next;
+      ++t.next;
+      if (n.count == kInner) {
         Move(node_tag, kTrav);
-        trav_pipe.emplace_back(cycle + lat_trav, node_tag);
+        trav_pipe.push({cycle + lat_trav, node_tag});
         ++perf[kBitTravBusy];
       } else {
         ++perf[kBitTravLeaf];
-        if (node_count[i] > 0) {
+        if (n.count > 0) {
           Move(node_tag, kLeaf);
-          t.remaining = node_count[i];
-          jobs_in.emplace_back(cycle + 1, Job{node_tag, node_first[i], node_count[i]});
+          t.remaining = n.count;
+          new_job = {node_tag, n.first, n.count};
+          has_new_job = true;
         } else {
           Move(node_tag, kExit);
         }
@@ -481,34 +578,33 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     if (list.resp_valid()) {
       const uint64_t tag = list.resp_tag();
       const uint32_t id = lists[tag & 0xFFFFFFFFu];
-      trq = {true, id, h.tri_offset + uint64_t{id} * layout.TriangleBytes(), (tag >> 32) << 32 | id};
+      trq = {true, id, h.tri_offset + uint64_t{id} * tri_bytes, (tag >> 32) << 32 | id};
     }
     const bool tri_fire = tri.resp_valid();
     const int tri_thread = tri_fire ? static_cast<int>(tri.resp_tag() >> 32) : -1;
     tri.Eval(trq, Cache::Req{}, true);
-    list.Eval(lr, Cache::Req{}, tri.ready1());
-    const bool list_fire = list_req_valid && list.ready1();
+    list.Eval(lr, Cache::Req{}, tri.accept1());
+    const bool list_fire = list_req_valid && list.accept1();
     if (list_fire) ++perf[kBitListBusy];
     if (tri_fire) {
-      isect_pipe.emplace_back(cycle + lat_isect, tri_thread);
+      isect_pipe.push({cycle + lat_isect, tri_thread});
       ++perf[kBitIsectBusy];
     }
 
-    // The memory arbiter: one beat a cycle, round robin over the caches.
-    mreq.Clear();
-    if (node.mem_valid()) mreq.Set(0);
-    if (list.mem_valid()) mreq.Set(1);
-    if (tri.mem_valid()) mreq.Set(2);
-    const int g = mem_arb.Pick(mreq);
-    mem_arb.Ack(g);
-    Cache* caches[3] = {&node, &list, &tri};
-    if (g >= 0) memory.Request(caches[g]->mem_addr(), static_cast<uint16_t>(g << 8 | caches[g]->mem_id()), cycle);
+    // The memory arbiter: one beat a cycle, round robin over the caches (the
+    // first requester after the last grant).
+    const unsigned mreq = node.mem_valid() | list.mem_valid() << 1 | tri.mem_valid() << 2;
+    const int g = kMemPick[mem_last][mreq];
+    if (g >= 0) {
+      mem_last = g;
+      memory.Request(caches[g]->mem_addr(), static_cast<uint16_t>(g << 8 | caches[g]->mem_id()), cycle);
+    }
 
     // Leaf exits and records out.
-    const int ex = exit_arb.Pick(in_set[kExit]);
+    const int ex = in_state[kExit] > 0 ? exit_arb.Pick(in_set[kExit]) : -1;
     exit_arb.Ack(ex);
-    if (ex >= 0) Move(ex, th[ex].cursor >= paths[th[ex].ray].size() ? kDone : kFetch);
-    const int o = out_arb.Pick(in_set[kDone]);
+    if (ex >= 0) Move(ex, th[ex].next == th[ex].end ? kDone : kFetch);
+    const int o = in_state[kDone] > 0 ? out_arb.Pick(in_set[kDone]) : -1;
     out_arb.Ack(o);
     if (o >= 0) {
       Move(o, kFree);
@@ -520,7 +616,7 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
       --th[tri_thread].remaining;
       ++th[tri_thread].outstanding;
     }
-    for (int t : retired) --th[t].outstanding;
+    if (retired >= 0) --th[retired].outstanding;
 
     // The clock edge.
     node.Commit(g == 0, resp_cache == 0 ? resp_id : -1);
@@ -535,23 +631,43 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     // queued_pop: a job leaves the FIFO when req_valid_o was low this cycle.
     if (queued && !lr.valid) {
       list_job = jobs.front();
-      jobs.pop_front();
+      jobs.pop();
       list_k = 0;
       list_req_valid = true;
     }
-    while (!jobs_in.empty() && jobs_in.front().first == cycle + 1) {
-      jobs.push_back(jobs_in.front().second);
-      jobs_in.pop_front();
+    // A leaf's job enters the FIFO at this edge (seen from the next cycle).
+    if (has_new_job) jobs.push(new_job);
+    if (n_moves > 0) {
+      const bool was_busy = busy();
+      for (size_t k = 0; k < n_moves; ++k) {
+        const auto [t, to_state] = moves[k];
+        const State from = th[t].state;
+        out.result.thread_states[from] += cycle + 1 - since[t];
+        since[t] = cycle + 1;
+        in_set[from].Reset(t);
+        in_set[to_state].Set(t);
+        --in_state[from];
+        ++in_state[to_state];
+        th[t].state = to_state;
+      }
+      if (busy() != was_busy) {
+        if (was_busy) perf[kBitBusy] += cycle + 1 - busy_since;
+        busy_since = cycle + 1;
+      }
+      n_moves = 0;
     }
-    for (const auto& [t, to_state] : moves) {
-      in_set[th[t].state].Reset(t);
-      in_set[to_state].Set(t);
-      --in_state[th[t].state];
-      ++in_state[to_state];
-      th[t].state = to_state;
-    }
-    moves.clear();
+    // The leaves over at this edge, to EXIT in the next cycle (a thread that
+    // issued a test this cycle has one outstanding: it is never found twice).
+    const auto leaf_over = [&th](int t) {
+      return th[t].state == kLeaf && th[t].remaining == 0 && th[t].outstanding == 0;
+    };
+    n_leaf_done = 0;
+    if (tri_fire && leaf_over(tri_thread)) leaf_done[n_leaf_done++] = tri_thread;
+    if (retired >= 0 && leaf_over(retired)) leaf_done[n_leaf_done++] = retired;
   }
+  // The counts of the last cycle's states (the cycle of the last record).
+  for (int t = 0; t < threads; ++t) out.result.thread_states[th[t].state] += cycle + 1 - since[t];
+  if (busy()) perf[kBitBusy] += cycle + 1 - busy_since;
   out.result.cycles = cycle + 1;
   const Cache::Events* ev[3] = {&node.events(), &list.events(), &tri.events()};
   const char* names[3] = {"node", "list", "tri"};
