@@ -119,6 +119,14 @@ AccelComparison CompareAccels(const std::string& scene_name, const AccelCompareO
   return c;
 }
 
+nlohmann::json PerRayJson(const AccelTotals& t, bool mailbox) {
+  const double n = std::max<double>(1.0, static_cast<double>(t.rays));
+  return {{"nodes", t.nodes / n},
+          {"leaves", t.leaves / n},
+          {"tri_tests", t.tri_tests / n},
+          {"mailbox_hits", mailbox ? nlohmann::json(t.mailbox_hits / n) : nlohmann::json(nullptr)}};
+}
+
 nlohmann::json AccelComparisonJson(const AccelComparison& c) {
   nlohmann::json rows = nlohmann::json::array();
   for (const AccelRow& r : c.rows) {
@@ -126,7 +134,6 @@ nlohmann::json AccelComparisonJson(const AccelComparison& c) {
       rows.push_back({{"structure", AccelKindName(r.kind)}, {"error", r.error}});
       continue;
     }
-    const double n = std::max<double>(1.0, static_cast<double>(r.totals.rays));
     nlohmann::json j = {
         {"structure", AccelKindName(r.kind)},
         {"build_seconds", r.build_seconds},
@@ -139,12 +146,10 @@ nlohmann::json AccelComparisonJson(const AccelComparison& c) {
         {"trace_seconds", r.totals.seconds},
         {"mrays_per_second", r.Mrays()},
         {"time_ratio_to_best", r.time_ratio},
-        {"per_ray",
-         {{"nodes", r.totals.nodes / n}, {"leaves", r.totals.leaves / n}, {"tri_tests", r.totals.tri_tests / n}}},
+        {"per_ray", PerRayJson(r.totals, r.mailbox)},
         {"mismatches", r.mismatches},
         {"ties", r.ties},
     };
-    j["per_ray"]["mailbox_hits"] = r.mailbox ? nlohmann::json(r.totals.mailbox_hits / n) : nlohmann::json(nullptr);
     rows.push_back(j);
   }
   return {{"scene", c.scene}, {"triangles", c.triangles}, {"width", c.width}, {"height", c.height}, {"rows", rows}};

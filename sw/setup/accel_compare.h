@@ -55,4 +55,9 @@ AccelComparison CompareAccels(const std::string& scene, const AccelCompareOption
 
 nlohmann::json AccelComparisonJson(const AccelComparison& c);
 
+// Nodes, leaves and triangle tests per ray of a traced batch, and the tests
+// the mailboxes saved (null for a structure without them); 0 for no rays.
+// The "per_ray" object of kdrt render and of each compare-accel row.
+nlohmann::json PerRayJson(const AccelTotals& totals, bool mailbox);
+
 }  // namespace kdrt

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "scene/camera.h"
 #include "tools/commands.h"
+#include "setup/accel_compare.h"
 #include "setup/precision_check.h"
 #include "setup/prepared_scene.h"
 #include "setup/ray_set.h"
@@ -40,17 +41,8 @@ struct RenderArgs {
   ShadingArgs shading;
 };
 
-// Nodes, leaves and tests per ray of a traced batch (and the tests the
-// mailboxes saved, for the structures that have them).
-nlohmann::json PerRay(const AccelTotals& ts, bool mailbox) {
-  const double n = static_cast<double>(ts.rays);
-  nlohmann::json j = {{"nodes", ts.nodes / n}, {"leaves", ts.leaves / n}, {"tri_tests", ts.tri_tests / n}};
-  if (mailbox) j["mailbox_hits"] = ts.mailbox_hits / n;
-  return j;
-}
-
 nlohmann::json PassStats(const AccelTotals& ts, bool mailbox) {
-  return {{"rays", ts.rays}, {"hits", ts.hits}, {"trace_seconds", ts.seconds}, {"per_ray", PerRay(ts, mailbox)}};
+  return {{"rays", ts.rays}, {"hits", ts.hits}, {"trace_seconds", ts.seconds}, {"per_ray", PerRayJson(ts, mailbox)}};
 }
 
 // One batch through the kd-tree image or the software structure.
@@ -114,7 +106,7 @@ int Run(const RenderArgs& args) {
       {"trace_seconds", ts.seconds},
       {"threads", to.threads},
       {"mrays_per_second", ts.seconds > 0 ? n / ts.seconds * 1e-6 : 0.0},
-      {"per_ray", PerRay(ts, mailbox)},
+      {"per_ray", PerRayJson(ts, mailbox)},
       {"totals", {{"nodes", ts.nodes}, {"leaves", ts.leaves}, {"tri_tests", ts.tri_tests}}},
       {"precision", check.requirement.Json()},
       {"warnings", check.warnings},

@@ -52,7 +52,7 @@ TEST_P(RenderAccel, SameHitBufferAsTheKdTree) {
   EXPECT_GT(j["structure"]["nodes"].get<double>(), 0);
   EXPECT_GT(j["structure"]["memory_bytes"].get<double>(), 0);
   EXPECT_GT(j["per_ray"]["tri_tests"].get<double>(), 0);
-  EXPECT_EQ(j["per_ray"].contains("mailbox_hits"), accel != "bvh") << j["per_ray"].dump();
+  EXPECT_EQ(j["per_ray"]["mailbox_hits"].is_number(), accel != "bvh") << j["per_ray"].dump();
 
   // Shading traces the secondary passes through the same structure.
   auto shaded = RunKdrt("render" + common + " --accel " + accel + " --ao 1 -o " + dir + "/shaded.png --json " + dir +
