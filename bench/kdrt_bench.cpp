@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
       const double kd_mrays = n / ts.seconds * 1e-6, emb_mrays = n / embree_seconds * 1e-6;
       std::printf("%-8s %9zu | %8.2f %6u %8.2f | %8.3fs %8.3fs %6.2f | %9.2f %9.2f %6.2f | %5.2f%%\n", name.c_str(),
                   scene.triangles.size(), tree.stats.refs_per_triangle, tree.stats.max_leaf_prims,
-                  ts.totals.tri_tests / static_cast<double>(rays.size()), tree.stats.build_seconds, embree.build_seconds(),
+                  ts.totals.tri_tests / n, tree.stats.build_seconds, embree.build_seconds(),
                   tree.stats.build_seconds / embree.build_seconds(), kd_mrays, emb_mrays, kd_mrays / emb_mrays,
                   100.0 * agree / n);
       std::fflush(stdout);

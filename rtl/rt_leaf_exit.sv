@@ -64,7 +64,6 @@ module rt_leaf_exit #(
   logic pop_ok, push_ok, push_in_plane, pop_in_plane, exit_in_plane;
   logic [SpW-1:0] in_plane_q [Threads];  // entries with a NaN t0 on each thread's stack
 
-
   rt_rr_arb #(.N(Threads)) u_arb (
     .clk_i, .rst_ni, .req_i, .ack_i(1'b1), .valid_o(exit_valid_o), .idx_o(exit_idx_o)
   );

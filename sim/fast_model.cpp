@@ -391,9 +391,7 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   // no image (a beat reads zeros, and costs no cache miss on the host). The
   // image must fit all the same, as for the RTL.
   MemoryModel memory(spec.memory);
-  if (image.size() > spec.memory.size_bytes) {
-    memory.LoadImage(std::vector<uint8_t>(image.data(), image.data() + image.size()));  // throws the RTL's error
-  }
+  memory.CheckFits(image.size());
   // The simulation's own time, as the RTL harness counts it (without the
   // reference traversal, which both pay).
   const auto start = std::chrono::steady_clock::now();

@@ -29,11 +29,15 @@ MemoryModel::MemoryModel(const MemoryConfig& config) : config_(config) {
   tokens_ = kBeatBytes;
 }
 
-void MemoryModel::LoadImage(const std::vector<uint8_t>& bytes) {
-  if (bytes.size() > config_.size_bytes) {
-    throw MemoryError("memory image of " + std::to_string(bytes.size()) + " bytes does not fit the modelled memory of " +
+void MemoryModel::CheckFits(uint64_t bytes) const {
+  if (bytes > config_.size_bytes) {
+    throw MemoryError("memory image of " + std::to_string(bytes) + " bytes does not fit the modelled memory of " +
                       std::to_string(config_.size_bytes) + " bytes");
   }
+}
+
+void MemoryModel::LoadImage(const std::vector<uint8_t>& bytes) {
+  CheckFits(bytes.size());
   image_ = bytes;
 }
 

@@ -61,6 +61,8 @@ class MemoryModel : public MemoryPort {
   // Places `bytes` at address 0; the rest of the memory reads as zero.
   // Throws MemoryError if the image does not fit.
   void LoadImage(const std::vector<uint8_t>& bytes);
+  // Throws LoadImage's MemoryError if an image of `bytes` would not fit.
+  void CheckFits(uint64_t bytes) const;
 
   // A read of the 16 bytes at `addr` (16-byte aligned), accepted in cycle
   // `cycle`. Throws MemoryError outside the memory or when misaligned.

@@ -55,6 +55,7 @@ enum class LeafCause : uint8_t {
 };
 inline constexpr int kLeafCauseCount = 5;
 const char* LeafCauseName(LeafCause c);  // "few", "depth", "no_plane", "no_gain", "hopeless"
+const char* LeafCauseText(LeafCause c);  // "few triangles", "depth limit", ... (for people)
 
 // A leaf of more than this many triangles counts as large in LeafCauses.
 inline constexpr uint32_t kLargeLeafPrims = 16;

@@ -86,4 +86,15 @@ const char* LeafCauseName(LeafCause c) {
   return "unknown";
 }
 
+const char* LeafCauseText(LeafCause c) {
+  switch (c) {
+    case LeafCause::kFew: return "few triangles";
+    case LeafCause::kDepth: return "depth limit";
+    case LeafCause::kNoPlane: return "no plane";
+    case LeafCause::kNoGain: return "no cheaper split";
+    case LeafCause::kHopeless: return "hopeless split";
+  }
+  return "unknown";
+}
+
 }  // namespace kdrt

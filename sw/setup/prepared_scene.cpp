@@ -68,10 +68,6 @@ PreparedScene PrepareScene(Scene scene, const BuildOptions& build) {
 
 namespace {
 
-// Leaf causes in the builder's order, with the names people read.
-constexpr const char* kCauseText[kLeafCauseCount] = {"few triangles", "depth limit", "no plane",
-                                                     "no cheaper split", "hopeless split"};
-
 nlohmann::json LeafCausesJson(const LeafCauses& c) {
   if (!c.recorded) return nullptr;
   nlohmann::json j = {{"large_leaf_prims", kLargeLeafPrims}};
@@ -90,10 +86,11 @@ void PrintLeafCauses(const LeafCauses& c) {
   for (int i = 0; i < kLeafCauseCount; ++i) {
     const LeafCauseCount& n = c.by_cause[i];
     if (n.leaves == 0) continue;
-    all += (all.empty() ? "" : ", ") + std::string(kCauseText[i]) + " " + std::to_string(n.leaves);
+    const std::string text = LeafCauseText(static_cast<LeafCause>(i));
+    all += (all.empty() ? "" : ", ") + text + " " + std::to_string(n.leaves);
     if (n.large == 0) continue;
     large_total += n.large;
-    large += (large.empty() ? "" : ", ") + std::string(kCauseText[i]) + " " + std::to_string(n.large) +
+    large += (large.empty() ? "" : ", ") + text + " " + std::to_string(n.large) +
              " (largest " + std::to_string(n.largest) + ")";
   }
   std::printf("leaf causes    %s\n", all.c_str());

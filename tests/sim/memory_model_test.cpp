@@ -115,6 +115,9 @@ TEST(MemoryModel, RefusesRequestsOutsideTheMemory) {
     EXPECT_NE(std::string(e.what()).find("outside the modelled memory of 1024 bytes"), std::string::npos);
   }
   EXPECT_THROW(m.LoadImage(Counting(2048)), MemoryError);
+  // The fit check alone (the fast model's, which loads no image).
+  EXPECT_NO_THROW(m.CheckFits(1024));
+  EXPECT_THROW(m.CheckFits(1025), MemoryError);
 }
 
 TEST(MemoryModel, RejectsBadConfigurations) {
