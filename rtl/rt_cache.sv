@@ -1,4 +1,5 @@
-// rt_cache: direct-mapped, read-only, non-blocking cache of whole lines.
+// rt_cache: set-associative (Ways = 1: direct-mapped), read-only,
+// non-blocking cache of whole lines.
 //
 // A request names a line by `key_i` (any number that identifies the line: a
 // line address, or a triangle id) and gives the byte address of the line's
@@ -21,6 +22,13 @@
 // (wait_inflight_o), or needs a register and none is free (wait_mshr_o).
 // Data is never stale: the cache is read-only.
 //
+// Lines / Ways sets of Ways lines; a key's set is its low bits. A completed
+// miss fills the way that already holds its line (a register answering
+// several requests fills once per answer), else the lowest invalid way,
+// else the tree pseudo-LRU victim. The tree's Ways - 1 bits per set (node n
+// at level l: bit 2^l - 1 + n; 0 = the victim lies in the lower half) point
+// away from every way touched: by a hit taken, then by a fill, in one cycle.
+//
 // With MissPort = 1 a second request port takes misses only: a request there
 // that misses is taken (it joins or gets a miss register) in a cycle in which
 // the first port takes no miss; a request that would hit is not taken there
@@ -33,6 +41,7 @@
 
 module rt_cache #(
   parameter int unsigned Lines = 64,
+  parameter int unsigned Ways = 1,     // a power of two, at most Lines
   parameter int unsigned LineBeats = 2,
   parameter int unsigned KeyWidth = 24,
   parameter int unsigned AddrWidth = 32,
@@ -42,6 +51,10 @@ module rt_cache #(
   parameter bit MissPort = 1'b0,       // the second, miss-only request port
   localparam int unsigned LineBits = LineBeats * 128,
   localparam int unsigned IdxW = (Lines > 1) ? $clog2(Lines) : 1,
+  localparam int unsigned Sets = Lines / Ways,
+  localparam int unsigned SetW = (Sets > 1) ? $clog2(Sets) : 1,
+  localparam int unsigned WayW = (Ways > 1) ? $clog2(Ways) : 1,
+  localparam int unsigned PlruW = (Ways > 1) ? Ways - 1 : 1,
   localparam int unsigned BeatW = 2,
   localparam int unsigned MshrW = (Mshrs > 1) ? $clog2(Mshrs) : 1,
   localparam int unsigned MemIdW = MshrW + BeatW,
@@ -157,7 +170,7 @@ module rt_cache #(
     end
   end
 
-  logic [IdxW-1:0]     req_idx, req2_idx, done_line;
+  logic [IdxW-1:0]     hit_line, done_line;
   logic [KeyWidth-1:0] done_key;
   logic [LineBits-1:0] done_data;
   logic [TagWidth-1:0] done_tag;
@@ -172,19 +185,86 @@ module rt_cache #(
   logic [AddrWidth-1:0] m_addr;
   logic [TagWidth-1:0] m_tag;
 
-  // Lines is a power of two: the index is the key's low bits.
-  assign req_idx = req_key_i[IdxW-1:0];
-  assign req2_idx = req2_key_i[IdxW-1:0];
   assign done_key = mshr_key_q[KeyWidth*done_idx +: KeyWidth];
-  assign done_line = done_key[IdxW-1:0];
   assign done_data = mshr_data_q[LineBits*done_idx +: LineBits];
   assign done_cnt = mshr_cnt_q[TgtW*done_idx +: TgtW];
   assign done_out = mshr_out_q[TgtW*done_idx +: TgtW];
   assign done_tag = mshr_tgt_q[TagWidth*(Targets*32'(done_idx) + 32'(done_out)) +: TagWidth];
   assign done_last = done_out + 1'b1 == done_cnt;
 
-  assign lookup_hit = valid_q[req_idx] && key_q[req_idx] == req_key_i;
-  assign lookup2_hit = valid_q[req2_idx] && key_q[req2_idx] == req2_key_i;
+  // Sets is a power of two: a key's set is its low bits. Line set * Ways + w
+  // is way w of the set.
+  logic [SetW-1:0]  req_set, req2_set, done_set;
+  logic [Ways-1:0]  hit_ways, hit2_ways, done_ways, free_ways, points;
+  logic [WayW-1:0]  hit_way, fill_way, free_way, victim;
+  assign req_set = req_key_i[SetW-1:0] & SetW'(Sets - 1);
+  assign req2_set = req2_key_i[SetW-1:0] & SetW'(Sets - 1);
+  assign done_set = done_key[SetW-1:0] & SetW'(Sets - 1);
+  for (genvar w = 0; w < Ways; w++) begin : g_way
+    logic [IdxW-1:0] l1, l2, ld;
+    assign l1 = IdxW'(32'(req_set) * Ways + w);
+    assign l2 = IdxW'(32'(req2_set) * Ways + w);
+    assign ld = IdxW'(32'(done_set) * Ways + w);
+    assign hit_ways[w] = valid_q[l1] && key_q[l1] == req_key_i;
+    assign hit2_ways[w] = valid_q[l2] && key_q[l2] == req2_key_i;
+    assign done_ways[w] = valid_q[ld] && key_q[ld] == done_key;
+    assign free_ways[w] = !valid_q[ld];
+  end
+  always_comb begin
+    hit_way = '0;
+    fill_way = '0;
+    free_way = '0;
+    for (int w = Ways - 1; w >= 0; w--) begin
+      if (hit_ways[w]) hit_way = WayW'(w);
+      if (done_ways[w]) fill_way = WayW'(w);
+      if (free_ways[w]) free_way = WayW'(w);
+    end
+    if (!(|done_ways)) fill_way = (|free_ways) ? free_way : victim;
+  end
+  always_comb begin
+    victim = '0;
+    for (int w = 0; w < Ways; w++) begin
+      if (points[w]) victim = WayW'(w);
+    end
+  end
+  assign hit_line = IdxW'(32'(req_set) * Ways + 32'(hit_way));
+  assign done_line = IdxW'(32'(done_set) * Ways + 32'(fill_way));
+  assign lookup_hit = |hit_ways;
+  assign lookup2_hit = |hit2_ways;
+
+  // The pseudo-LRU tree of each set. Node n at level l of way w's path is
+  // w >> (WayW - l); the way the bits point at is the one whose every path
+  // node agrees with its bit of the way number.
+  if (Ways > 1) begin : g_plru
+    logic [Sets*PlruW-1:0] plru_q, plru_d;
+    logic [PlruW-1:0]      done_plru;
+    assign done_plru = plru_q[PlruW*32'(done_set) +: PlruW];
+    for (genvar w = 0; w < Ways; w++) begin : g_points
+      logic [WayW-1:0] agree;
+      for (genvar l = 0; l < WayW; l++) begin : g_level
+        assign agree[l] = done_plru[(1 << l) - 1 + (w >> (WayW - l))] == 1'((w >> (WayW - 1 - l)) & 1);
+      end
+      assign points[w] = &agree;
+    end
+    for (genvar s = 0; s < Sets; s++) begin : g_set
+      for (genvar l = 0; l < WayW; l++) begin : g_level
+        for (genvar n = 0; n < (1 << l); n++) begin : g_node
+          localparam int unsigned Bit = PlruW * s + (1 << l) - 1 + n;
+          logic on_hit, on_fill, after_hit;
+          assign on_hit = accept && lookup_hit && req_set == SetW'(s) && (32'(hit_way) >> (WayW - l)) == n;
+          assign on_fill = deliver && done_set == SetW'(s) && (32'(fill_way) >> (WayW - l)) == n;
+          assign after_hit = on_hit ? !hit_way[WayW - 1 - l] : plru_q[Bit];
+          assign plru_d[Bit] = on_fill ? !fill_way[WayW - 1 - l] : after_hit;
+        end
+      end
+    end
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) plru_q <= '0;
+      else plru_q <= plru_d;
+    end
+  end else begin : g_direct
+    assign points = 1'b1;
+  end
   assign out_take = resp_valid_o && resp_ready_i;
   assign hit_free = !hit_valid_q || (out_take && !del_valid_q);
   assign del_free = !del_valid_q || out_take;
@@ -296,7 +376,7 @@ module rt_cache #(
 
   always_ff @(posedge clk_i) begin
     if (accept && lookup_hit) begin
-      hit_data_q <= data_q[req_idx];
+      hit_data_q <= data_q[hit_line];
       hit_tag_q <= req_tag_i;
     end
     if (m_take) begin

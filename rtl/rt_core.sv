@@ -42,6 +42,8 @@ module rt_core #(
   // Requests each miss register answers: misses to a line already being
   // fetched join its register (1 = no merging; they wait for the fill).
   parameter int unsigned CacheTargets /*verilator public*/ = 8,
+  // Lines per set of each cache (pseudo-LRU replacement): 1 = direct-mapped.
+  parameter int unsigned CacheWays /*verilator public*/ = 1,
   localparam int unsigned W = E + M + 1,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1
 ) (
@@ -294,7 +296,7 @@ module rt_core #(
   rt_mem_system #(.AddrWidth(AddrWidth), .TagWidth(ThW), .TriIdxWidth(TriIdxWidth),
                   .NodeCacheLines(NodeCacheLines), .ListCacheLines(ListCacheLines), .TriCacheLines(TriCacheLines),
                   .NodeLineBeats(NodeLineBeats), .ListLineBeats(ListLineBeats), .CacheMshrs(CacheMshrs),
-                  .CacheTargets(CacheTargets), .TriLineBeats(TriBeats)) u_mem (
+                  .CacheTargets(CacheTargets), .CacheWays(CacheWays), .TriLineBeats(TriBeats)) u_mem (
     .clk_i, .rst_ni, .tri_base_i,
     .node_req_valid_i(fetch_valid), .node_req_ready_o(node_req_ready), .node_req_tag_i(fetch_idx),
     .node_req_addr_i(node_base_i + (AddrWidth'(node_q[fetch_idx]) >> SlotBits << 4)),

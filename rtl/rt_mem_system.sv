@@ -27,6 +27,8 @@ module rt_mem_system #(
   parameter int unsigned CacheMshrs = 8,
   // Requests one miss register answers (rt_cache Targets): 1 = no merging.
   parameter int unsigned CacheTargets = 8,
+  // Lines per set of each cache (rt_cache Ways): 1 = direct-mapped.
+  parameter int unsigned CacheWays = 1,
   // Beats of a triangle record: kdrt_pkg::img_tri_beats of the format (3 for fp32).
   parameter int unsigned TriLineBeats = 3,
   localparam int unsigned TriBits = 128 * TriLineBeats
@@ -90,7 +92,7 @@ module rt_mem_system #(
   logic [127:0]         mem_resp_data;
 
   rt_cache #(.Lines(NodeCacheLines), .LineBeats(NodeLineBeats), .KeyWidth(AddrWidth - NodeOffW),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets),
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets), .Ways(CacheWays),
              .MissPort(1'b1)) u_node_cache (
     .clk_i, .rst_ni,
     .req_valid_i(node_req_valid_i), .req_ready_o(node_req_ready_o),
@@ -114,7 +116,7 @@ module rt_mem_system #(
   logic [ListOffW-1:0]          entry_off;
   logic [TriIdxWidth-1:0]       entry_tri;
   rt_cache #(.Lines(ListCacheLines), .LineBeats(ListLineBeats), .KeyWidth(AddrWidth - ListOffW),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth + ListOffW), .Mshrs(CacheMshrs), .Targets(CacheTargets))
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth + ListOffW), .Mshrs(CacheMshrs), .Targets(CacheTargets), .Ways(CacheWays))
       u_list_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_req_valid_i), .req_ready_o(list_req_ready_o),
@@ -135,7 +137,7 @@ module rt_mem_system #(
 
   // A triangle line is one record, named by the triangle id.
   rt_cache #(.Lines(TriCacheLines), .LineBeats(TriLineBeats), .KeyWidth(TriIdxWidth),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth + TriIdxWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets))
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth + TriIdxWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets), .Ways(CacheWays))
       u_tri_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_resp_valid), .req_ready_o(tri_req_ready), .req_key_i(entry_tri),

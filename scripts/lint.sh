@@ -58,6 +58,13 @@ for file in "$RTL"/*.sv; do
   else
     lint "$top" "defaults" "${srcs[@]}" -y "$RTL" "$file"
   fi
+  # rt_cache's sets and pseudo-LRU exist only with Ways > 1 (the default is 1).
+  if [ "$top" = rt_cache ]; then
+    for ways in 2 8:Lines=8; do
+      IFS=: read -r w lines <<< "$ways"
+      lint "$top" "Ways=$w ${lines:-}" "${srcs[@]}" -y "$RTL" "$file" -GWays="$w" ${lines:+-G$lines}
+    done
+  fi
 done
 
 if [ "$fail" -ne 0 ]; then

@@ -21,7 +21,7 @@ void CheckOverride(const CoreParam& p, int value) {
     throw InputError(flag + ": must lie in " + std::to_string(p.min) + ".." + std::to_string(p.max));
   }
   if (p.power_of_two && !IsPowerOfTwo(value)) {
-    throw InputError(flag + ": a direct-mapped cache needs a power of two lines");
+    throw InputError(flag + ": must be a power of two (a cache's sets and ways are indexed by key bits)");
   }
 }
 
@@ -117,6 +117,12 @@ void CheckConfigCovers(const CoreConfig& c, const SceneRequirements& req, uint64
     if (c.value[i] >= Required(p.rule, req)) continue;
     if (p.rule == SceneRule::kTreeDepth && allow_overflow) continue;
     throw InputError(std::string(p.what) + " " + std::to_string(c.value[i]) + " is too small: " + Reason(p, req));
+  }
+  for (const Param lines : {kNodeCacheLines, kListCacheLines, kTriCacheLines}) {
+    if (c[kCacheWays] > c[lines]) {
+      throw InputError("--cache-ways " + std::to_string(c[kCacheWays]) + ": more ways than the " +
+                       std::to_string(c[lines]) + " " + kCoreParams[lines].what + " (a set cannot be larger)");
+    }
   }
   if (mem_size > (uint64_t{1} << c[kAddrWidth])) {
     throw InputError("--mem-size " + std::to_string(mem_size) + " exceeds what " + std::to_string(c[kAddrWidth]) +

@@ -94,10 +94,12 @@ class Cache {
     uint64_t hit = 0, miss = 0, merge = 0, wait = 0, wait_inflight = 0, wait_mshr = 0;
   };
 
-  Cache(int lines, int line_beats, int mshrs, int targets, bool miss_port)
-      : line_mask_(static_cast<uint64_t>(lines) - 1), beats_(line_beats), targets_(targets), mshrs_(mshrs),
-        miss_port_(miss_port), all_mshrs_(mshrs >= 64 ? ~uint64_t{0} : (uint64_t{1} << mshrs) - 1), lines_(lines),
-        mshr_(mshrs), keys_(mshrs, 0), tags_(static_cast<size_t>(mshrs) * targets) {}
+  Cache(int lines, int ways, int line_beats, int mshrs, int targets, bool miss_port)
+      : set_mask_(static_cast<uint64_t>(lines / ways) - 1), ways_(ways), way_bits_(__builtin_ctz(ways)),
+        beats_(line_beats), targets_(targets), mshrs_(mshrs), miss_port_(miss_port),
+        all_mshrs_(mshrs >= 64 ? ~uint64_t{0} : (uint64_t{1} << mshrs) - 1), lines_(lines),
+        plru_(ways > 1 ? lines / ways : 0, 0), mshr_(mshrs), keys_(mshrs, 0),
+        tags_(static_cast<size_t>(mshrs) * targets) {}
 
   // Registered outputs, valid before Eval().
   bool resp_valid() const { return hit_valid_ | del_valid_; }
@@ -152,6 +154,8 @@ class Cache {
     bool out_take = false, deliver = false, ready1 = false, ready2 = false;
     bool hit = false, m_take = false, m_join = false;
     int m_join_idx = -1, free_idx = -1;
+    int hit_way = 0;
+    uint64_t hit_set = 0;
   };
 
   // The miss registers in use for `key`.
@@ -173,7 +177,8 @@ class Cache {
     const uint64_t joinable = valid_ & ~done_ & ~full_;
     if (r1.valid) {
       // A present line is a hit whatever the miss registers hold.
-      const bool lookup_hit = Present(r1.key);
+      const int way = FindWay(r1.key);
+      const bool lookup_hit = way >= 0;
       const uint64_t match = lookup_hit ? 0 : Matches(r1.key);
       const int join_idx = (match & joinable) ? __builtin_ctzll(match & joinable) : -1;
       const bool hit_free = !hit_valid_ || (c_.out_take && !del_valid_);
@@ -185,6 +190,8 @@ class Cache {
       if (!lookup_hit && match && join_idx < 0) ++ev_.wait_inflight;
       if (!lookup_hit && !match && free_idx < 0) ++ev_.wait_mshr;
       c_.hit = c_.ready1 && lookup_hit;
+      c_.hit_way = way;
+      c_.hit_set = r1.key & set_mask_;
       if (c_.ready1 && !lookup_hit) {
         c_.m_take = true;
         c_.m_join = join_ok;
@@ -193,7 +200,7 @@ class Cache {
       }
     }
     if (use_r2 && !c_.m_take) {
-      const bool lookup2_hit = Present(r2.key);
+      const bool lookup2_hit = FindWay(r2.key) >= 0;
       const uint64_t match2 = lookup2_hit ? 0 : Matches(r2.key);
       const int join2_idx = (match2 & joinable) ? __builtin_ctzll(match2 & joinable) : -1;
       const bool join2_ok = !lookup2_hit && join2_idx >= 0;
@@ -220,6 +227,7 @@ class Cache {
     const bool send_valid = mem_valid();
     const int send_idx = send_valid ? SendIdx() : -1;
     const int done_idx = done_ ? __builtin_ctzll(done_) : -1;
+    const int fill_way = c_.deliver ? FillWay(keys_[done_idx]) : 0;
     if (c_.out_take && del_valid_) {
       del_valid_ = false;
     } else if (c_.out_take) {
@@ -228,6 +236,7 @@ class Cache {
     if (c_.hit) {
       hit_valid_ = true;
       hit_tag_ = c_.hit_tag;
+      if (ways_ > 1) Touch(c_.hit_set, c_.hit_way);
     }
     if (c_.m_take) {
       const int idx = c_.m_join ? c_.m_join_idx : c_.free_idx;
@@ -259,7 +268,9 @@ class Cache {
       Mshr& s = mshr_[d];
       del_tag_ = tags_[static_cast<size_t>(d) * targets_ + s.out];
       ++s.out;
-      lines_[keys_[d] & line_mask_] = {true, keys_[d]};
+      const uint64_t set = keys_[d] & set_mask_;
+      lines_[set * ways_ + fill_way] = {true, keys_[d]};
+      if (ways_ > 1) Touch(set, fill_way);
       del_valid_ = true;
       if (s.out == s.cnt) {
         const uint64_t keep = ~(uint64_t{1} << d);
@@ -272,17 +283,55 @@ class Cache {
     held_idx_ = send_idx;
   }
 
-  bool Present(uint64_t key) const {
-    const Line& l = lines_[key & line_mask_];
-    return l.valid && l.key == key;
+  // The way of the key's set that holds its line, or -1. Line set * ways + w
+  // is way w of the set (rtl/rt_cache.sv).
+  int FindWay(uint64_t key) const {
+    const Line* set = &lines_[(key & set_mask_) * ways_];
+    for (int w = 0; w < ways_; ++w) {
+      if (set[w].valid && set[w].key == key) return w;
+    }
+    return -1;
+  }
+  // The tree pseudo-LRU of a set: node n at level l is bit 2^l - 1 + n, and
+  // a bit of 0 puts the victim in the lower half. A touch points every node
+  // on the way's path away from it.
+  void Touch(uint64_t set, int way) {
+    uint32_t& t = plru_[set];
+    for (int l = 0; l < way_bits_; ++l) {
+      const int node = (1 << l) - 1 + (way >> (way_bits_ - l));
+      const uint32_t bit = (static_cast<uint32_t>(way) >> (way_bits_ - 1 - l)) & 1u;
+      t = (t & ~(1u << node)) | (bit ^ 1u) << node;
+    }
+  }
+  int Victim(uint64_t set) const {
+    int way = 0;
+    for (int l = 0; l < way_bits_; ++l) {
+      const int node = (1 << l) - 1 + (way >> (way_bits_ - l));
+      way |= static_cast<int>((plru_[set] >> node) & 1u) << (way_bits_ - 1 - l);
+    }
+    return way;
+  }
+  // Where a completed miss writes its line: the way that holds it already,
+  // else the lowest invalid way, else the victim (of the registered state).
+  int FillWay(uint64_t key) const {
+    const uint64_t set = key & set_mask_;
+    const Line* lines = &lines_[set * ways_];
+    int way = FindWay(key);
+    if (way >= 0) return way;
+    for (int w = ways_ - 1; w >= 0; --w) {
+      if (!lines[w].valid) way = w;
+    }
+    return way >= 0 ? way : Victim(set);
   }
   int SendIdx() const { return held_ ? held_idx_ : __builtin_ctzll(unsent_); }
 
-  uint64_t line_mask_;
+  uint64_t set_mask_;
+  int ways_, way_bits_;
   int beats_, targets_, mshrs_;
   bool miss_port_;
   uint64_t all_mshrs_;
   std::vector<Line> lines_;
+  std::vector<uint32_t> plru_;  // a set's tree bits (ways > 1)
   std::vector<Mshr> mshr_;
   std::vector<uint64_t> keys_;  // each miss register's line
   std::vector<uint64_t> tags_;  // the merged requests of miss register m: [m * targets_, + cnt)
@@ -400,9 +449,10 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   const int m = cfg.Format().m;
   const uint64_t lat_clip = static_cast<uint64_t>(m) + 8 + 11, lat_trav = 8, lat_isect = static_cast<uint64_t>(m) + 34;
   const int node_beats = 2, list_beats = 2, tri_beats = layout.TriangleBeats();
-  Cache node(cfg[kNodeCacheLines], node_beats, cfg[kCacheMshrs], cfg[kCacheTargets], true);
-  Cache list(cfg[kListCacheLines], list_beats, cfg[kCacheMshrs], cfg[kCacheTargets], false);
-  Cache tri(cfg[kTriCacheLines], tri_beats, cfg[kCacheMshrs], cfg[kCacheTargets], false);
+  const int ways = cfg[kCacheWays];
+  Cache node(cfg[kNodeCacheLines], ways, node_beats, cfg[kCacheMshrs], cfg[kCacheTargets], true);
+  Cache list(cfg[kListCacheLines], ways, list_beats, cfg[kCacheMshrs], cfg[kCacheTargets], false);
+  Cache tri(cfg[kTriCacheLines], ways, tri_beats, cfg[kCacheMshrs], cfg[kCacheTargets], false);
   Cache* caches[3] = {&node, &list, &tri};
 
   std::vector<Thread> th(threads);

@@ -4,7 +4,7 @@
 // registers and handshakes: threads and their states, the fixed-latency
 // units (setup, clip, traversal, intersection), the round-robin arbiters, the
 // node cache with its miss-only port, the list unit, the list and triangle
-// caches (direct-mapped lines, miss registers, merging, the two response
+// caches (sets of lines with pseudo-LRU, miss registers, merging, the two response
 // registers), the memory arbiter and the same MemoryModel. What a ray does
 // (the nodes it fetches, the leaves and their tests) comes from the reference
 // traversal, so the hits are the reference's by construction; the model only

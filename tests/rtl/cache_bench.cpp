@@ -14,6 +14,11 @@
 // is only given for a request not taken. Memory answers
 // each beat after a random latency and in random order; the requester sends
 // in random bursts and applies random backpressure.
+//
+// Replacement (RunReplacement): requests one at a time, each answered before
+// the next, on keys that crowd a few sets; every hit or miss must be the one
+// a C++ model of the sets predicts (lowest invalid way, else the tree
+// pseudo-LRU victim; hits and fills touch the tree), for Ways 1, 2 and 8.
 #include <cstdio>
 #include <map>
 #include <random>
@@ -24,6 +29,8 @@
 #include "Vrt_cache_merge2.h"
 #include "Vrt_cache_merge3.h"
 #include "Vrt_cache_missport.h"
+#include "Vrt_cache_ways2.h"
+#include "Vrt_cache_ways8.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -226,6 +233,121 @@ bool Run(const char* name, int beats, int mshrs, int targets, bool miss_port, ui
   return true;
 }
 
+// The cache's sets as the header of rtl/rt_cache.sv states them.
+class SetModel {
+ public:
+  SetModel(int lines, int ways) : ways_(ways), sets_(lines / ways), key_(lines, -1), tree_(sets_, 0) {
+    while ((1 << bits_) < ways) ++bits_;
+  }
+  // Whether `key` hits; a miss fills its line. Either touches the tree.
+  bool Access(int key) {
+    const int set = key % sets_;
+    int way = -1;
+    for (int w = 0; w < ways_; ++w) {
+      if (key_[set * ways_ + w] == key) way = w;
+    }
+    const bool hit = way >= 0;
+    if (!hit) {
+      for (int w = ways_ - 1; w >= 0; --w) {
+        if (key_[set * ways_ + w] < 0) way = w;
+      }
+      if (way < 0) {  // follow the tree from its root
+        way = 0;
+        for (int l = 0; l < bits_; ++l) {
+          way |= ((tree_[set] >> ((1 << l) - 1 + (way >> (bits_ - l)))) & 1) << (bits_ - 1 - l);
+        }
+      }
+      key_[set * ways_ + way] = key;
+    }
+    for (int l = 0; l < bits_; ++l) {  // point away from the way
+      const int node = (1 << l) - 1 + (way >> (bits_ - l));
+      const int toward = (way >> (bits_ - 1 - l)) & 1;
+      tree_[set] = (tree_[set] & ~(1 << node)) | (!toward) << node;
+    }
+    return hit;
+  }
+
+ private:
+  int ways_, sets_, bits_ = 0;
+  std::vector<int> key_, tree_;
+};
+
+template <class Dut>
+bool RunReplacement(const char* name, int ways, int beats, int count) {
+  SimCtrl<Dut> sim;
+  Dut& dut = sim.top();
+  SetModel model(kLines, ways);
+  std::mt19937 rng(11);
+  // Keys of two sets (or of the one set), a few more than they hold.
+  const int sets = kLines / ways;
+  std::uniform_int_distribution<int> key_dist(0, 2 * ways + 1);
+  dut.req_valid_i = 0;
+  dut.req2_valid_i = 0;
+  dut.mem_resp_valid_i = 0;
+  dut.resp_ready_i = 1;
+  dut.mem_req_ready_i = 1;
+  sim.Reset();
+  struct Beat {
+    uint64_t due;
+    uint32_t addr, id;
+  };
+  std::vector<Beat> in_flight;
+  int hits = 0, evictions_seen = 0;
+  uint64_t cycle = 0;
+  for (int n = 0; n < count; ++n) {
+    const int k = key_dist(rng);
+    const uint32_t key = static_cast<uint32_t>((k % 2) + (k / 2) * sets);  // sets 0 and 1
+    const bool expect_hit = model.Access(static_cast<int>(key));
+    dut.req_valid_i = 1;
+    dut.req_key_i = key;
+    dut.req_addr_i = 0x1000u + key * 16u * static_cast<uint32_t>(beats);
+    dut.req_tag_i = static_cast<uint32_t>(n & 0xFF);
+    bool taken = false, answered = false;
+    for (int wait = 0; !answered; ++wait, ++cycle) {
+      if (wait > 1000) {
+        std::printf("rt_cache %s: FAIL: request %d (key %u) not answered\n", name, n, key);
+        return false;
+      }
+      dut.mem_resp_valid_i = 0;
+      for (size_t i = 0; i < in_flight.size(); ++i) {
+        if (in_flight[i].due > cycle) continue;
+        dut.mem_resp_valid_i = 1;
+        dut.mem_resp_id_i = in_flight[i].id;
+        for (int b = 0; b < 16; ++b) PutBits(dut.mem_resp_data_i, 8 * b, 8, MemByte(in_flight[i].addr + b));
+        in_flight.erase(in_flight.begin() + static_cast<long>(i));
+        break;
+      }
+      sim.Settle();
+      if (dut.mem_req_valid_o) in_flight.push_back(Beat{cycle + 1 + cycle % 4, dut.mem_req_addr_o, dut.mem_req_id_o});
+      if (!taken && dut.req_ready_o) {
+        if (dut.hit_o != expect_hit) {
+          std::printf("rt_cache %s: FAIL: request %d (key %u) %s, the model says %s\n", name, n, key,
+                      dut.hit_o ? "hit" : "missed", expect_hit ? "hit" : "miss");
+          return false;
+        }
+        taken = true;
+        hits += expect_hit;
+      }
+      if (dut.resp_valid_o) {
+        if (!taken || dut.resp_tag_o != static_cast<uint32_t>(n & 0xFF)) {
+          std::printf("rt_cache %s: FAIL: response of another request\n", name);
+          return false;
+        }
+        answered = true;
+      }
+      sim.Tick();
+      if (taken) dut.req_valid_i = 0;
+    }
+    evictions_seen += !expect_hit && n >= 2 * ways;
+  }
+  if (hits == 0 || hits == count) {
+    std::printf("rt_cache %s: FAIL: replacement never exercised (%d hits of %d)\n", name, hits, count);
+    return false;
+  }
+  std::printf("rt_cache %s: PASS replacement (%d requests, %d hits, as the model)\n", name, count, hits);
+  return true;
+}
+
 }  // namespace
 }  // namespace kdrt::rtlbench
 
@@ -240,6 +362,13 @@ int main(int argc, char** argv) {
   ok = Run<Vrt_cache_merge3>("3-beat lines, 2 miss registers of 5 targets", 3, 2, 5, false, count) && ok;
   ok = Run<Vrt_cache_missport>("2-beat lines, 4 miss registers of 3 targets, miss-only port", 2, 4, 3, true, count) &&
        ok;
+  ok = Run<Vrt_cache_ways2>("2-beat lines, 2 ways, 4 miss registers of 3 targets", 2, 4, 3, false, count) && ok;
+  ok = Run<Vrt_cache_ways8>("3-beat lines, 8 ways (one set), 3 miss registers of 2 targets, miss-only port", 3, 3,
+                            2, true, count) &&
+       ok;
+  ok = RunReplacement<Vrt_cache_lines2>("direct-mapped", 1, 2, 4000) && ok;
+  ok = RunReplacement<Vrt_cache_ways2>("2 ways", 2, 2, 4000) && ok;
+  ok = RunReplacement<Vrt_cache_ways8>("8 ways", 8, 3, 4000) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

@@ -37,14 +37,17 @@ TEST(CoreParams, TableDefaultsAreTheRtlDefaults) {
 
 TEST(CoreParams, KeyNamesEveryParameter) {
   CoreConfig c = DefaultConfig(fp::kFp32);
-  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.64-r8-g8");
+  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.64-r8-g8-w1");
   c[kTriCacheLines] = 128;
-  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.128-r8-g8");
+  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.128-r8-g8-w1");
   EXPECT_EQ(c.Json()["TriCacheLines"], 128);
   EXPECT_EQ(c.VerilatorDefines()[kTriCacheLines], "-GTriCacheLines=128");
   c[kCacheTargets] = 1;
-  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.128-r8-g1");
-  EXPECT_EQ(c.VerilatorDefines().back(), "-GCacheTargets=1");
+  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.128-r8-g1-w1");
+  EXPECT_EQ(c.VerilatorDefines()[kCacheTargets], "-GCacheTargets=1");
+  c[kCacheWays] = 4;
+  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.128-r8-g1-w4");
+  EXPECT_EQ(c.VerilatorDefines().back(), "-GCacheWays=4");
 }
 
 TEST(CoreParams, PrebuiltModelsAreBuiltWithTheDefaults) {

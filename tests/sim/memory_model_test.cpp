@@ -195,6 +195,19 @@ TEST(SimConfig, OverridesWinAndTooSmallOnesAreRefused) {
   ov = ConfigOverrides{};
   ov.value[kTriCacheLines] = 48;  // not a power of two
   EXPECT_THROW(ChooseConfig(fp::kFp32, req, ov, 0, false), InputError);
+  ov = ConfigOverrides{};
+  ov.value[kCacheWays] = 3;  // not a power of two
+  EXPECT_THROW(ChooseConfig(fp::kFp32, req, ov, 0, false), InputError);
+  ov.value[kCacheWays] = 8;
+  ov.value[kTriCacheLines] = 4;  // a set larger than the cache
+  try {
+    ChooseConfig(fp::kFp32, req, ov, 0, false);
+    ADD_FAILURE() << "8 ways in a 4-line cache accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more ways than the 4 triangle cache lines"), std::string::npos) << e.what();
+  }
+  ov.value[kTriCacheLines] = 8;
+  EXPECT_EQ(ChooseConfig(fp::kFp32, req, ov, 0, false).config[kCacheWays], 8);
 }
 
 }  // namespace
