@@ -32,6 +32,7 @@ PARAMS = {
     "tri_cache_lines": "--tri-cache-lines",
     "cache_mshrs": "--cache-mshrs",
     "cache_targets": "--cache-targets",
+    "cache_ways": "--cache-ways",
     "mem_latency": "--mem-latency",
     "mem_bw": "--mem-bw",
     "cores": "--cores",
