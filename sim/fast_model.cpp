@@ -286,6 +286,10 @@ class Cache {
   // The way of the key's set that holds its line, or -1. Line set * ways + w
   // is way w of the set (rtl/rt_cache.sv).
   int FindWay(uint64_t key) const {
+    if (ways_ == 1) {
+      const Line& l = lines_[key & set_mask_];
+      return l.valid && l.key == key ? 0 : -1;
+    }
     const Line* set = &lines_[(key & set_mask_) * ways_];
     for (int w = 0; w < ways_; ++w) {
       if (set[w].valid && set[w].key == key) return w;

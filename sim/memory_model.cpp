@@ -41,42 +41,21 @@ void MemoryModel::LoadImage(const std::vector<uint8_t>& bytes) {
   image_ = bytes;
 }
 
-void MemoryModel::CheckRequest(uint64_t addr, uint64_t cycle) const {
+void MemoryModel::ThrowBadRequest(uint64_t addr, uint64_t cycle) const {
   if (addr % kBeatBytes != 0) {
     throw MemoryError("memory request at " + Hex(addr) + " (cycle " + std::to_string(cycle) +
                       ") is not 16-byte aligned");
   }
-  if (addr >= config_.size_bytes || config_.size_bytes - addr < kBeatBytes) {
-    throw MemoryError("memory request at " + Hex(addr) + " (cycle " + std::to_string(cycle) +
-                      ") lies outside the modelled memory of " + std::to_string(config_.size_bytes) + " bytes");
-  }
+  throw MemoryError("memory request at " + Hex(addr) + " (cycle " + std::to_string(cycle) +
+                    ") lies outside the modelled memory of " + std::to_string(config_.size_bytes) + " bytes");
 }
 
-void MemoryModel::Request(uint64_t addr, uint16_t tag, uint64_t cycle) {
-  CheckRequest(addr, cycle);
-  queue_.push_back(Pending{cycle + config_.latency, addr, tag});
-  ++requests_;
-  max_outstanding_ = std::max<uint64_t>(max_outstanding_, queue_.size());
-}
-
-bool MemoryModel::Respond(uint64_t cycle, MemoryResponse* out) {
-  const uint64_t elapsed = started_ ? cycle - last_cycle_ : 1;
-  started_ = true;
-  last_cycle_ = cycle;
-  tokens_ = std::min(max_tokens_, tokens_ + config_.bytes_per_cycle * static_cast<double>(elapsed));
-  if (queue_.empty() || queue_.front().ready_cycle > cycle || tokens_ < kBeatBytes) return false;
-  const Pending p = queue_.front();
-  queue_.pop_front();
-  tokens_ -= kBeatBytes;
-  bytes_read_ += kBeatBytes;
-  out->tag = p.tag;
-  out->addr = p.addr;
-  std::memset(out->data, 0, kBeatBytes);
-  if (p.addr < image_.size()) {
-    const size_t n = std::min<size_t>(kBeatBytes, image_.size() - p.addr);
-    std::memcpy(out->data, image_.data() + p.addr, n);
-  }
-  return true;
+void MemoryModel::Grow() {
+  std::vector<Pending> bigger(queue_.size() * 2);
+  for (uint64_t i = head_; i < tail_; ++i) bigger[i - head_] = queue_[i & (queue_.size() - 1)];
+  tail_ -= head_;
+  head_ = 0;
+  queue_.swap(bigger);
 }
 
 }  // namespace kdrt::sim

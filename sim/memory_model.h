@@ -14,7 +14,8 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
+#include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -66,23 +67,48 @@ class MemoryModel : public MemoryPort {
 
   // A read of the 16 bytes at `addr` (16-byte aligned), accepted in cycle
   // `cycle`. Throws MemoryError outside the memory or when misaligned.
-  void Request(uint64_t addr, uint16_t tag, uint64_t cycle) override;
+  void Request(uint64_t addr, uint16_t tag, uint64_t cycle) override {
+    CheckRequest(addr, cycle);
+    if (tail_ - head_ == queue_.size()) Grow();
+    queue_[tail_++ & (queue_.size() - 1)] = Pending{cycle + config_.latency, addr, tag};
+    ++requests_;
+    if (tail_ - head_ > max_outstanding_) max_outstanding_ = tail_ - head_;
+  }
   // Request()'s check alone: throws MemoryError for a read outside the memory
   // or not 16-byte aligned (a cache in front of the memory checks with it).
-  void CheckRequest(uint64_t addr, uint64_t cycle) const;
+  void CheckRequest(uint64_t addr, uint64_t cycle) const {
+    if (addr % kBeatBytes != 0 || addr >= config_.size_bytes || config_.size_bytes - addr < kBeatBytes) {
+      ThrowBadRequest(addr, cycle);
+    }
+  }
 
   // Advances to cycle `cycle` (call once per cycle, increasing) and returns
   // true with the beat to drive on the response port this cycle, if any.
-  bool Respond(uint64_t cycle, MemoryResponse* out) override;
+  // (Inline: the fast model asks every cycle a beat may be due.)
+  bool Respond(uint64_t cycle, MemoryResponse* out) override {
+    const uint64_t elapsed = started_ ? cycle - last_cycle_ : 1;
+    started_ = true;
+    last_cycle_ = cycle;
+    tokens_ = std::min(max_tokens_, tokens_ + config_.bytes_per_cycle * static_cast<double>(elapsed));
+    if (head_ == tail_ || Front().ready_cycle > cycle || tokens_ < kBeatBytes) return false;
+    const Pending p = Front();
+    ++head_;
+    tokens_ -= kBeatBytes;
+    bytes_read_ += kBeatBytes;
+    out->tag = p.tag;
+    out->addr = p.addr;
+    CopyBeat(p.addr, out->data);
+    return true;
+  }
 
   const MemoryConfig& config() const { return config_; }
   uint64_t bytes_read() const { return bytes_read_; }
   uint64_t requests() const { return requests_; }
-  size_t outstanding() const override { return queue_.size(); }
+  size_t outstanding() const override { return static_cast<size_t>(tail_ - head_); }
   uint64_t max_outstanding() const { return max_outstanding_; }
   // The first cycle in which Respond() can return a beat (UINT64_MAX when
   // nothing is outstanding): the fast model skips the cycles before it.
-  uint64_t next_ready_cycle() const { return queue_.empty() ? UINT64_MAX : queue_.front().ready_cycle; }
+  uint64_t next_ready_cycle() const { return head_ == tail_ ? UINT64_MAX : Front().ready_cycle; }
 
  private:
   struct Pending {
@@ -90,9 +116,24 @@ class MemoryModel : public MemoryPort {
     uint64_t addr;
     uint16_t tag;
   };
+  const Pending& Front() const { return queue_[head_ & (queue_.size() - 1)]; }
+  // Doubles the ring, keeping the requests in order.
+  void Grow();
+  [[noreturn]] void ThrowBadRequest(uint64_t addr, uint64_t cycle) const;
+  // The image's bytes at addr (zeros beyond it) into a beat.
+  void CopyBeat(uint64_t addr, uint8_t* data) const {
+    std::memset(data, 0, kBeatBytes);
+    if (addr < image_.size()) {
+      std::memcpy(data, image_.data() + addr, std::min<uint64_t>(kBeatBytes, image_.size() - addr));
+    }
+  }
+
   MemoryConfig config_;
   std::vector<uint8_t> image_;
-  std::deque<Pending> queue_;  // request order; ready cycles never decrease
+  // The requests in order, a ring of a power-of-two size: [head_, tail_)
+  // (running counts). Ready cycles never decrease.
+  std::vector<Pending> queue_ = std::vector<Pending>(64);
+  uint64_t head_ = 0, tail_ = 0;
   double tokens_ = 0;
   double max_tokens_ = 0;
   uint64_t last_cycle_ = 0;

@@ -320,7 +320,8 @@ INSTANTIATE_TEST_SUITE_P(
 TEST_F(SimCli, AssociativeCaches) {
   const std::string common =
       "sim gen:balls:800 --res 24x24 --node-cache-lines 16 --list-cache-lines 16 --tri-cache-lines 16 -q";
-  const RunResult r = RunKdrt(common + " --cache-ways 4 --model both -o " + Path("x.png") + " --json " + Path("x.json"));
+  const RunResult r =
+      RunKdrt(common + " --cache-ways 4 --model both -o " + Path("x.png") + " --json " + Path("x.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = ReadJson(Path("x.json"));
   EXPECT_EQ(j["model"]["CacheWays"].get<int>(), 4);
@@ -345,7 +346,8 @@ TEST_F(SimCli, AssociativeCaches) {
   const RunResult bad = RunKdrt(common + " --cache-ways 3 -o " + Path("b.png"));
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.output.find("--cache-ways 3: must be a power of two"), std::string::npos) << bad.output;
-  const RunResult big = RunKdrt("sim gen:balls:800 --res 24x24 --tri-cache-lines 8 --cache-ways 16 -o " + Path("b.png"));
+  const RunResult big =
+      RunKdrt("sim gen:balls:800 --res 24x24 --tri-cache-lines 8 --cache-ways 16 -o " + Path("b.png"));
   EXPECT_EQ(big.exit_code, 1);
   EXPECT_NE(big.output.find("more ways than the 8 triangle cache lines"), std::string::npos) << big.output;
   EXPECT_FALSE(fs::exists(Path("b.png")));
