@@ -13,11 +13,13 @@
 // per cycle, and refuses requests at random; node requests come in bursts
 // and may change or drop while not taken (the core's arbiter does), list
 // requests are held until taken; both responses meet random backpressure.
+// Twice: direct-mapped caches, and 2-way ones (CacheWays 2).
 #include <cstdio>
 #include <map>
 #include <vector>
 
 #include "Vrt_mem_system.h"
+#include "Vrt_mem_system_ways2.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -28,7 +30,7 @@ using sim::SimCtrl;
 
 // As verilated (tests/rtl/CMakeLists.txt): AddrWidth 20, TagWidth 4,
 // TriIdxWidth 8, 4 lines per cache, 2-beat node and list lines, 3 miss
-// registers per cache.
+// registers per cache; CacheWays 1 and 2.
 constexpr int kNodeLineBytes = 32;
 constexpr uint32_t kTags = 16;
 constexpr uint32_t kNodeBase = 0x01000, kNodeBytes = 0x300;   // nodes: lines reused and evicted
@@ -57,9 +59,11 @@ struct Beat {
   uint32_t addr, tag;
 };
 
-bool Run(uint64_t count) {
-  SimCtrl<Vrt_mem_system> sim;
-  Vrt_mem_system& dut = sim.top();
+template <class Dut>
+bool Run(const char* name, uint64_t count) {
+  std::printf("rt_mem_system, %s:\n", name);
+  SimCtrl<Dut> sim;
+  Dut& dut = sim.top();
   dut.node_req_valid_i = 0;
   dut.list_req_valid_i = 0;
   dut.mem_resp_valid_i = 0;
@@ -207,7 +211,9 @@ bool Run(uint64_t count) {
 int main(int argc, char** argv) {
   using namespace kdrt::rtlbench;
   Verilated::commandArgs(argc, argv);
-  const bool ok = Run(LongRun() ? 1000000 : 100000);
+  const uint64_t count = LongRun() ? 1000000 : 100000;
+  bool ok = Run<Vrt_mem_system>("direct-mapped caches", count);
+  ok = Run<Vrt_mem_system_ways2>("2-way caches", count) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }
