@@ -111,6 +111,9 @@ class Cache {
   // Nothing can happen here until a memory beat arrives or a request comes:
   // no response shown, no beat to send, no line ready to answer.
   bool Quiet() const { return !(hit_valid_ | del_valid_ | held_ | ((unsent_ | done_) != 0)); }
+  // Waits for memory (rt_mem_system's mem_wait_o): a beat to send or a miss
+  // register in use.
+  bool MemWait() const { return held_ | ((unsent_ | valid_) != 0); }
 
   // `r2` is looked at only on the miss-only port (miss_port).
   void Eval(const Req& r1, const Req& r2, bool resp_ready) {
@@ -350,7 +353,8 @@ class Cache {
 
 constexpr int kBitRayIn = PerfBit("ray_in"), kBitRayOut = PerfBit("ray_out"), kBitBusy = PerfBit("busy"),
               kBitTravBusy = PerfBit("trav_busy"), kBitTravLeaf = PerfBit("trav_leaf"),
-              kBitListBusy = PerfBit("list_busy"), kBitIsectBusy = PerfBit("isect_busy");
+              kBitListBusy = PerfBit("list_busy"), kBitIsectBusy = PerfBit("isect_busy"),
+              kBitStallMem = PerfBit("stall_mem"), kBitStallStack = PerfBit("stall_stack");
 
 enum State : uint8_t { kFree, kSetup, kFetch, kWaitNode, kTrav, kLeaf, kExit, kDone };
 
@@ -520,7 +524,12 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
       for (const Ring<Stage>* pipe : {&clip_pipe, &trav_pipe, &isect_pipe}) {
         if (!pipe->empty()) next_event = std::min(next_event, pipe->front().cycle);
       }
-      if (next_event != UINT64_MAX && next_event > cycle) cycle = next_event;
+      if (next_event != UINT64_MAX && next_event > cycle) {
+        // Skipped cycles make no progress: a memory stall while a cache waits
+        // on the memory (no thread is in EXIT here, so no stack stall).
+        if (busy() && (node.MemWait() || list.MemWait() || tri.MemWait())) perf[kBitStallMem] += next_event - cycle;
+        cycle = next_event;
+      }
     }
     // The memory's beat of this cycle, routed by {cache, register, beat}.
     int resp_cache = -1, resp_id = -1;
@@ -552,12 +561,14 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
       ++perf[kBitRayIn];
     }
     // Setup and clip done: into FETCH, or DONE when the ray misses the box.
-    if (!clip_pipe.empty() && clip_pipe.front().cycle == cycle) {
+    const bool clip_out = !clip_pipe.empty() && clip_pipe.front().cycle == cycle;
+    if (clip_out) {
       const int t = clip_pipe.front().thread;
       clip_pipe.pop();
       Move(t, th[t].next == th[t].end ? kDone : kFetch);
     }
-    if (!trav_pipe.empty() && trav_pipe.front().cycle == cycle) {
+    const bool trav_out = !trav_pipe.empty() && trav_pipe.front().cycle == cycle;
+    if (trav_out) {
       Move(trav_pipe.front().thread, kFetch);
       trav_pipe.pop();
     }
@@ -598,11 +609,13 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     if (node.accept2()) Move(f2, kWaitNode);
     Job new_job{};  // a leaf's job for the list unit's FIFO
     bool has_new_job = false;
+    bool trav_in = false;
     if (node_fire) {
       Thread& t = th[node_tag];
       const Step& n = *t.next;
       ++t.next;
       if (n.count == kInner) {
+        trav_in = true;
         Move(node_tag, kTrav);
         trav_pipe.push({cycle + lat_trav, node_tag});
         ++perf[kBitTravBusy];
@@ -637,7 +650,10 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     tri.Eval(trq, Cache::Req{}, true);
     list.Eval(lr, Cache::Req{}, tri.accept1());
     const bool list_fire = list_req_valid && list.accept1();
-    if (list_fire) ++perf[kBitListBusy];
+    // rt_perf_events' list_busy: an entry requested or one answered (its
+    // triangle taken by the triangle cache).
+    const bool entry_fire = trq.valid && tri.accept1();
+    if (list_fire || entry_fire) ++perf[kBitListBusy];
     if (tri_fire) {
       isect_pipe.push({cycle + lat_isect, tri_thread});
       ++perf[kBitIsectBusy];
@@ -662,6 +678,15 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
       Move(o, kFree);
       record_valid = true;
     }
+
+    // rt_perf_events' stalls from this cycle's registered state and moves: a
+    // memory stall when a thread is busy, nothing progresses and a cache
+    // waits on the memory; a stack stall when a thread in EXIT is not taken.
+    // (The units and the harness are always ready: no backpressure.)
+    const bool any_progress = trav_in || list_fire || entry_fire || tri_fire || ex >= 0 || o >= 0 || alloc >= 0 ||
+                              clip_out || trav_out || retired >= 0;
+    if (busy() && !any_progress && (node.MemWait() || list.MemWait() || tri.MemWait())) ++perf[kBitStallMem];
+    if (in_state[kExit] > (ex >= 0 ? 1u : 0u)) ++perf[kBitStallStack];
 
     // LEAF: the counters of tests issued and returned.
     if (tri_fire) {

@@ -10,9 +10,10 @@
 // traversal, so the hits are the reference's by construction; the model only
 // says how many cycles the core takes and why.
 //
-// Not modelled: stack overflows (a scene deeper than StackDepth), the
-// stall_mem / stall_stack / stall_backpressure events and the unit stalls
-// (the units never stall in this core).
+// Every performance event of rt_perf_events is counted as the RTL counts it
+// (the backpressure and unit stalls are zero: the units and the harness are
+// always ready). Not modelled: stack overflows (a scene deeper than
+// StackDepth is refused).
 #pragma once
 
 #include <cstdint>

@@ -220,9 +220,9 @@ ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, co
   ModelRun out;
   out.report = ReportJson(ri);
   out.report["cycle_model"] = "fast";
-  out.report["notes"] = {"fast cycle model (sim/fast_model.h): cycles, cache events and thread states are "
-                         "modelled, stall_mem/stack/backpressure and stack overflows are not; calibrated against "
-                         "the RTL (README), not exact"};
+  out.report["notes"] = {"fast cycle model (sim/fast_model.h): cycles and every performance event as the RTL "
+                         "counts them (cycle-exact where tested: tests/sim/sim_cli_test.cpp); stack overflows are "
+                         "not modelled (a tree deeper than the stack is refused)"};
   out.hits = std::move(outcome.result.hits);
   return out;
 }
