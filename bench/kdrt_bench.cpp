@@ -17,6 +17,7 @@
 #include "accel/kdtree.h"
 #include "oracle/embree_scene.h"
 #include "scene/camera.h"
+#include "scene/text_fields.h"
 #include "scenes/gen/generators.h"
 #include "trace/memory_image.h"
 #include "trace/tracer.h"
@@ -58,28 +59,21 @@ int main(int argc, char** argv) {
   for (const std::string& item : Split(scenes)) {
     const size_t colon = item.find(':');
     const std::string name = item.substr(0, colon);
+    try {
+      GeneratorDescription(name);  // InputError on an unknown generator
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "kdrt_bench: --scenes: %s\n", e.what());
+      return 1;
+    }
     for (const std::string& size_text : colon == std::string::npos ? Split(sizes) : Split(item.substr(colon + 1))) {
-      size_t used = 0;
-      int size = 0;
-      try {
-        size = std::stoi(size_text, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (name.empty() || used == 0 || used != size_text.size() || size <= 0) {
-        std::fprintf(stderr, "kdrt_bench: --scenes/--sizes: '%s' is not a generator with a positive triangle count\n",
-                     item.c_str());
+      long long size = 0;
+      if (!ParseInteger(size_text, &size) || size < 1 || size > kMaxGeneratorSize) {
+        std::fprintf(stderr, "kdrt_bench: --scenes/--sizes: '%s': a triangle count must be an integer in 1..%d\n",
+                     item.c_str(), kMaxGeneratorSize);
         return 1;
       }
-      runs.emplace_back(name, size);
+      runs.emplace_back(name, static_cast<int>(size));
     }
-  }
-  // An unknown generator is an input error before anything runs.
-  try {
-    for (const auto& run : runs) GenerateScene(run.first, 1);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "kdrt_bench: --scenes: %s\n", e.what());
-    return 1;
   }
   std::printf("%-8s %9s | %8s %6s %8s | %9s %9s %6s | %9s %9s %6s | %6s\n", "scene", "tris", "refs/tri",
               "max", "tests/r", "kd build", "emb build", "ratio", "kd Mray/s", "emb Mray/s", "ratio", "agree");
