@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/ring.h"
 #include "trace/tracer.h"
 
 namespace kdrt::sim {
@@ -53,30 +54,6 @@ class RrArb {
 
  private:
   int last_;
-};
-
-// A FIFO of bounded size in a power-of-two ring (no allocation per entry).
-// The bound is the caller's proof; push() checks it all the same.
-template <typename T>
-class Ring {
- public:
-  explicit Ring(size_t bound) {
-    size_t cap = 1;
-    while (cap < bound) cap <<= 1;
-    buf_.resize(cap);
-    mask_ = cap - 1;
-  }
-  bool empty() const { return head_ == tail_; }
-  const T& front() const { return buf_[head_ & mask_]; }
-  void pop() { ++head_; }
-  void push(const T& v) {
-    if (tail_ - head_ > mask_) throw std::logic_error("fast model: ring overflow");
-    buf_[tail_++ & mask_] = v;
-  }
-
- private:
-  std::vector<T> buf_;
-  size_t mask_ = 0, head_ = 0, tail_ = 0;
 };
 
 // rt_cache at the level of its registers (the header comment of
@@ -488,8 +465,8 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   // The pipelines take at most one thread a cycle: setup/clip and traversal
   // hold each thread at most once, intersection at most one test a cycle of
   // its latency.
-  Ring<Stage> clip_pipe(threads), trav_pipe(threads), isect_pipe(lat_isect + 1);
-  Ring<Job> jobs(threads);  // rt_list_unit's FIFO (a thread has one job at most)
+  Ring<Stage> clip_pipe(threads, true), trav_pipe(threads, true), isect_pipe(lat_isect + 1, true);
+  Ring<Job> jobs(threads, true);  // rt_list_unit's FIFO (a thread has one job at most)
   bool list_req_valid = false;
   Job list_job{};
   uint32_t list_k = 0;  // entries of list_job requested so far

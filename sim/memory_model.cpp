@@ -50,12 +50,4 @@ void MemoryModel::ThrowBadRequest(uint64_t addr, uint64_t cycle) const {
                     ") lies outside the modelled memory of " + std::to_string(config_.size_bytes) + " bytes");
 }
 
-void MemoryModel::Grow() {
-  std::vector<Pending> bigger(queue_.size() * 2);
-  for (uint64_t i = head_; i < tail_; ++i) bigger[i - head_] = queue_[i & (queue_.size() - 1)];
-  tail_ -= head_;
-  head_ = 0;
-  queue_.swap(bigger);
-}
-
 }  // namespace kdrt::sim

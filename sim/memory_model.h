@@ -13,12 +13,14 @@
 // Requests are always accepted: any number may be outstanding.
 #pragma once
 
-#include <cstdint>
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "sim/ring.h"
 
 namespace kdrt::sim {
 
@@ -69,10 +71,9 @@ class MemoryModel : public MemoryPort {
   // `cycle`. Throws MemoryError outside the memory or when misaligned.
   void Request(uint64_t addr, uint16_t tag, uint64_t cycle) override {
     CheckRequest(addr, cycle);
-    if (tail_ - head_ == queue_.size()) Grow();
-    queue_[tail_++ & (queue_.size() - 1)] = Pending{cycle + config_.latency, addr, tag};
+    queue_.push(Pending{cycle + config_.latency, addr, tag});
     ++requests_;
-    if (tail_ - head_ > max_outstanding_) max_outstanding_ = tail_ - head_;
+    if (queue_.size() > max_outstanding_) max_outstanding_ = queue_.size();
   }
   // Request()'s check alone: throws MemoryError for a read outside the memory
   // or not 16-byte aligned (a cache in front of the memory checks with it).
@@ -90,9 +91,9 @@ class MemoryModel : public MemoryPort {
     started_ = true;
     last_cycle_ = cycle;
     tokens_ = std::min(max_tokens_, tokens_ + config_.bytes_per_cycle * static_cast<double>(elapsed));
-    if (head_ == tail_ || Front().ready_cycle > cycle || tokens_ < kBeatBytes) return false;
-    const Pending p = Front();
-    ++head_;
+    if (queue_.empty() || queue_.front().ready_cycle > cycle || tokens_ < kBeatBytes) return false;
+    const Pending p = queue_.front();
+    queue_.pop();
     tokens_ -= kBeatBytes;
     bytes_read_ += kBeatBytes;
     out->tag = p.tag;
@@ -104,11 +105,11 @@ class MemoryModel : public MemoryPort {
   const MemoryConfig& config() const { return config_; }
   uint64_t bytes_read() const { return bytes_read_; }
   uint64_t requests() const { return requests_; }
-  size_t outstanding() const override { return static_cast<size_t>(tail_ - head_); }
+  size_t outstanding() const override { return queue_.size(); }
   uint64_t max_outstanding() const { return max_outstanding_; }
   // The first cycle in which Respond() can return a beat (UINT64_MAX when
   // nothing is outstanding): the fast model skips the cycles before it.
-  uint64_t next_ready_cycle() const { return head_ == tail_ ? UINT64_MAX : Front().ready_cycle; }
+  uint64_t next_ready_cycle() const { return queue_.empty() ? UINT64_MAX : queue_.front().ready_cycle; }
 
  private:
   struct Pending {
@@ -116,9 +117,6 @@ class MemoryModel : public MemoryPort {
     uint64_t addr;
     uint16_t tag;
   };
-  const Pending& Front() const { return queue_[head_ & (queue_.size() - 1)]; }
-  // Doubles the ring, keeping the requests in order.
-  void Grow();
   [[noreturn]] void ThrowBadRequest(uint64_t addr, uint64_t cycle) const;
   // The image's bytes at addr (zeros beyond it) into a beat.
   void CopyBeat(uint64_t addr, uint8_t* data) const {
@@ -130,10 +128,7 @@ class MemoryModel : public MemoryPort {
 
   MemoryConfig config_;
   std::vector<uint8_t> image_;
-  // The requests in order, a ring of a power-of-two size: [head_, tail_)
-  // (running counts). Ready cycles never decrease.
-  std::vector<Pending> queue_ = std::vector<Pending>(64);
-  uint64_t head_ = 0, tail_ = 0;
+  Ring<Pending> queue_{64, /*bounded=*/false};  // request order; ready cycles never decrease
   double tokens_ = 0;
   double max_tokens_ = 0;
   uint64_t last_cycle_ = 0;
