@@ -14,12 +14,8 @@ res=${2:-128x128}
 lats=${3:-20 200}
 ways_list=${4:-1 2 4 8}
 shift 4 || true
-scenes=()
-while [ $# -gt 0 ] && [ "$1" != "--" ]; do scenes+=("$1"); shift; done
-[ "${1:-}" = "--" ] && shift
-extra=("$@")
-[ ${#scenes[@]} -gt 0 ] ||
-  scenes=(gen:room:10000 gen:balls:10000 gen:rings:10000 gen:tetra:10000 gen:tree:10000 gen:gears:10000)
+. "$(dirname "${BASH_SOURCE[0]}")/scene-args.sh"
+read_scenes "gen:room:10000 gen:balls:10000 gen:rings:10000 gen:tetra:10000 gen:tree:10000 gen:gears:10000" "$@"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 header="| scene | latency | bound |"

@@ -11,12 +11,8 @@ kdrt=${1:-build/bin/kdrt}
 res=${2:-128x128}
 lats=${3:-20 200}
 shift 3 || true
-scenes=()
-while [ $# -gt 0 ] && [ "$1" != "--" ]; do scenes+=("$1"); shift; done
-[ "${1:-}" = "--" ] && shift
-extra=("$@")
-[ ${#scenes[@]} -gt 0 ] ||
-  scenes=(gen:room:10000 gen:balls:10000 gen:rings:10000 gen:tetra:10000 gen:tree:10000 gen:gears:10000)
+. "$(dirname "${BASH_SOURCE[0]}")/scene-args.sh"
+read_scenes "gen:room:10000 gen:balls:10000 gen:rings:10000 gen:tetra:10000 gen:tree:10000 gen:gears:10000" "$@"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "| scene | latency | cycles/ray | bound | efficiency | stall mem / stack / backpressure | node / list / tri hit | max misses out | waits node / list / tri (in flight, no MSHR) | threads fetch / wait node / trav / leaf / exit / other |"

@@ -13,11 +13,8 @@ cores_list=${3:-1 2 4 8}
 bws=${4:-16 4}
 out=${5:-scaling}
 shift 5 || true
-scenes=()
-while [ $# -gt 0 ] && [ "$1" != "--" ]; do scenes+=("$1"); shift; done
-[ "${1:-}" = "--" ] && shift
-extra=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(gen:balls:10000 gen:tree:10000)
+. "$(dirname "${BASH_SOURCE[0]}")/scene-args.sh"
+read_scenes "gen:balls:10000 gen:tree:10000" "$@"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "scene,bytes_per_cycle,cores,rays_per_cycle,cycles_per_ray,efficiency,l2_hit_rate,mem_bytes_per_cycle_used" > "$out.csv"
