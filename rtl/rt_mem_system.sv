@@ -116,7 +116,8 @@ module rt_mem_system #(
   logic [ListOffW-1:0]          entry_off;
   logic [TriIdxWidth-1:0]       entry_tri;
   rt_cache #(.Lines(ListCacheLines), .LineBeats(ListLineBeats), .KeyWidth(AddrWidth - ListOffW),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth + ListOffW), .Mshrs(CacheMshrs), .Targets(CacheTargets), .Ways(CacheWays))
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth + ListOffW), .Mshrs(CacheMshrs), .Targets(CacheTargets),
+             .Ways(CacheWays))
       u_list_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_req_valid_i), .req_ready_o(list_req_ready_o),
@@ -137,7 +138,8 @@ module rt_mem_system #(
 
   // A triangle line is one record, named by the triangle id.
   rt_cache #(.Lines(TriCacheLines), .LineBeats(TriLineBeats), .KeyWidth(TriIdxWidth),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth + TriIdxWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets), .Ways(CacheWays))
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth + TriIdxWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets),
+             .Ways(CacheWays))
       u_tri_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_resp_valid), .req_ready_o(tri_req_ready), .req_key_i(entry_tri),
