@@ -39,6 +39,13 @@ struct MemoryConfig {
   double bytes_per_cycle = 16.0;            // token-bucket refill rate
 };
 
+// The bandwidth a run gets: the memory answers at most one beat a cycle (one
+// port, behind the core or the L2), so a refill rate above kBeatBytes runs
+// as kBeatBytes.
+inline double PortBytesPerCycle(const MemoryConfig& c) {
+  return c.bytes_per_cycle < kBeatBytes ? c.bytes_per_cycle : double{kBeatBytes};
+}
+
 struct MemoryResponse {
   uint16_t tag = 0;
   uint64_t addr = 0;

@@ -1,8 +1,10 @@
 #include "sim/run_options.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "common/error.h"
+#include "sim/memory_model.h"
 
 namespace kdrt::sim {
 
@@ -47,6 +49,17 @@ void CheckRunOptions(const RunOptions& o) {
     if (o.l2_latency < 1) throw InputError("--l2-latency must be at least 1 cycle");
     if (o.ray_chunk < 1) throw InputError("--ray-chunk must be at least 1");
   }
+}
+
+std::vector<std::string> RunOptionWarnings(const RunOptions& o) {
+  std::vector<std::string> w;
+  if (o.mem_bw > kBeatBytes) {
+    char bw[32];
+    std::snprintf(bw, sizeof bw, "%g", o.mem_bw);
+    w.push_back(std::string("--mem-bw ") + bw + ": the memory answers one 16-byte beat a cycle, so this run has " +
+                "16 bytes per cycle (and its memory bound is counted at 16)");
+  }
+  return w;
 }
 
 std::vector<std::string> RunOptionArgs(const RunOptions& o, const std::string& trace_path) {

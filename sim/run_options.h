@@ -37,6 +37,10 @@ struct RunOptions {
 void AddRunOptions(CLI::App& cmd, RunOptions& options);
 // Throws InputError on inconsistent options (e.g. --trace-ray without --trace).
 void CheckRunOptions(const RunOptions& options);
+
+// What runs differently from what was asked (the run goes on): e.g. a
+// --mem-bw above what the memory port carries.
+std::vector<std::string> RunOptionWarnings(const RunOptions& options);
 // The options as arguments for the model executable (trace: `trace_path`).
 std::vector<std::string> RunOptionArgs(const RunOptions& options, const std::string& trace_path);
 

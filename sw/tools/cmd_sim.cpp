@@ -54,6 +54,8 @@ struct PassFailed {
 
 int RunSim(SimArgs args) {
   sim::CheckRunOptions(args.run);
+  const std::vector<std::string> run_warnings = sim::RunOptionWarnings(args.run);
+  for (const std::string& w : run_warnings) std::fprintf(stderr, "kdrt: warning: %s\n", w.c_str());
   if (args.model != "rtl" && args.model != "fast" && args.model != "both") {
     throw InputError("--model " + args.model + ": expected rtl, fast or both");
   }
@@ -146,6 +148,7 @@ int RunSim(SimArgs args) {
                 &report);
   report["precision"] = check.requirement.Json();
   report["warnings"] = check.warnings;
+  for (const std::string& w : run_warnings) report["warnings"].push_back(w);
 
   // Shading: each secondary pass is one more run of the same model (the
   // waveform and --trace-ray cover the primary pass only).

@@ -425,6 +425,26 @@ TEST_F(SimCli, MemoryTimingChangesCyclesNotHits) {
   EXPECT_LE(b["memory"]["bytes_per_cycle_used"].get<double>(), 2.5 + 1e-9);
 }
 
+// The memory answers one 16-byte beat a cycle: a wider --mem-bw runs as 16,
+// and the run says so (stderr and JSON) and counts its memory bound at 16.
+TEST_F(SimCli, BandwidthAboveThePortWarns) {
+  const std::string common = "sim gen:balls:500 --res 16x16 --model fast -q -o " + Path("x.png");
+  ASSERT_EQ(RunKdrt(common + " --json " + Path("a.json")).exit_code, 0);
+  const RunResult wide = RunKdrt(common + " --mem-bw 64 --json " + Path("b.json"));
+  ASSERT_EQ(wide.exit_code, 0) << wide.output;
+  EXPECT_NE(wide.output.find("kdrt: warning: --mem-bw 64: the memory answers one 16-byte beat a cycle"),
+            std::string::npos)
+      << wide.output;
+  const nlohmann::json a = ReadJson(Path("a.json")), b = ReadJson(Path("b.json"));
+  EXPECT_EQ(b["cycles"], a["cycles"]);
+  EXPECT_EQ(b["memory"]["bytes_per_cycle"].get<double>(), 64.0);
+  EXPECT_EQ(b["memory"]["bytes_per_cycle_effective"].get<double>(), 16.0);
+  EXPECT_DOUBLE_EQ(b["memory_bound_cycles_per_ray"].get<double>(), a["memory_bound_cycles_per_ray"].get<double>());
+  ASSERT_EQ(b["warnings"].size(), 1u);
+  EXPECT_NE(b["warnings"][0].get<std::string>().find("--mem-bw 64"), std::string::npos);
+  EXPECT_TRUE(a["warnings"].empty());
+}
+
 // The SystemC top ticks the same core and memory model: same hits, same cycles.
 TEST_F(SimCli, SystemCLoopGivesTheSameCyclesAndHits) {
   const std::string common = "gen:tetra:300 --res 12x12 --format bf16 -o " + Path("x.png");
