@@ -25,7 +25,7 @@
 module rt_core #(
   parameter int unsigned E /*verilator public*/ = 8,
   parameter int unsigned M /*verilator public*/ = 23,
-  parameter int unsigned Threads /*verilator public*/ = 16,
+  parameter int unsigned Threads /*verilator public*/ = 32,
   parameter int unsigned StackDepth /*verilator public*/ = 32,
   parameter int unsigned NodeIdxWidth /*verilator public*/ = 24,
   parameter int unsigned TriIdxWidth /*verilator public*/ = 24,
@@ -38,12 +38,12 @@ module rt_core #(
   parameter int unsigned RayIdWidth = 32,
   // Miss registers per cache (outstanding line fetches); the memory tag
   // {cache, miss register, beat} must fit 16 bits.
-  parameter int unsigned CacheMshrs /*verilator public*/ = 8,
+  parameter int unsigned CacheMshrs /*verilator public*/ = 16,
   // Requests each miss register answers: misses to a line already being
   // fetched join its register (1 = no merging; they wait for the fill).
   parameter int unsigned CacheTargets /*verilator public*/ = 8,
   // Lines per set of each cache (pseudo-LRU replacement): 1 = direct-mapped.
-  parameter int unsigned CacheWays /*verilator public*/ = 1,
+  parameter int unsigned CacheWays /*verilator public*/ = 4,
   localparam int unsigned W = E + M + 1,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1
 ) (

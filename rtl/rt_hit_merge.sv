@@ -20,7 +20,7 @@
 module rt_hit_merge #(
   parameter int unsigned E = 8,
   parameter int unsigned M = 23,
-  parameter int unsigned Threads = 16,
+  parameter int unsigned Threads = 32,
   parameter int unsigned PrimWidth = 24,
   localparam int unsigned W = E + M + 1,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1

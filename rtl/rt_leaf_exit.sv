@@ -23,7 +23,7 @@
 module rt_leaf_exit #(
   parameter int unsigned E = 8,
   parameter int unsigned M = 23,
-  parameter int unsigned Threads = 16,
+  parameter int unsigned Threads = 32,
   parameter int unsigned StackDepth = 32,
   parameter int unsigned NodeIdxWidth = 24,
   localparam int unsigned W = E + M + 1,

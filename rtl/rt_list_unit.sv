@@ -9,8 +9,8 @@
 `default_nettype none
 
 module rt_list_unit #(
-  parameter int unsigned TagWidth = 4,
-  parameter int unsigned Jobs = 16,
+  parameter int unsigned TagWidth = 5,
+  parameter int unsigned Jobs = 32,
   parameter int unsigned CountWidth = 25,
   parameter int unsigned AddrWidth = 28
 ) (

@@ -17,18 +17,18 @@
 
 module rt_mem_system #(
   parameter int unsigned AddrWidth = 28,
-  parameter int unsigned TagWidth = 4,
+  parameter int unsigned TagWidth = 5,
   parameter int unsigned TriIdxWidth = 24,
   parameter int unsigned NodeCacheLines = 64,
   parameter int unsigned ListCacheLines = 64,
   parameter int unsigned TriCacheLines = 64,
   parameter int unsigned NodeLineBeats = 2,
   parameter int unsigned ListLineBeats = 2,
-  parameter int unsigned CacheMshrs = 8,
+  parameter int unsigned CacheMshrs = 16,
   // Requests one miss register answers (rt_cache Targets): 1 = no merging.
   parameter int unsigned CacheTargets = 8,
   // Lines per set of each cache (rt_cache Ways): 1 = direct-mapped.
-  parameter int unsigned CacheWays = 1,
+  parameter int unsigned CacheWays = 4,
   // Beats of a triangle record: kdrt_pkg::img_tri_beats of the format (3 for fp32).
   parameter int unsigned TriLineBeats = 3,
   localparam int unsigned TriBits = 128 * TriLineBeats

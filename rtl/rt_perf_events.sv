@@ -12,7 +12,7 @@
 `default_nettype none
 
 module rt_perf_events #(
-  parameter int unsigned Threads = 16,
+  parameter int unsigned Threads = 32,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1
 ) (
   input  logic               busy_i,         // rays in flight

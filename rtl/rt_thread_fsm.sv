@@ -20,7 +20,7 @@
 `default_nettype none
 
 module rt_thread_fsm #(
-  parameter int unsigned Threads = 16,
+  parameter int unsigned Threads = 32,
   parameter int unsigned CountWidth = 25,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1
 ) (

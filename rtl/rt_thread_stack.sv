@@ -11,7 +11,7 @@
 `default_nettype none
 
 module rt_thread_stack #(
-  parameter int unsigned Threads = 16,
+  parameter int unsigned Threads = 32,
   parameter int unsigned StackDepth = 32,
   parameter int unsigned Width = 8,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1

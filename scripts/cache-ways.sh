@@ -13,7 +13,7 @@ kdrt=${1:-build/bin/kdrt}
 res=${2:-128x128}
 lats=${3:-20 200}
 ways_list=${4:-1 2 4 8}
-shift 4 || true
+shift $(($# < 4 ? $# : 4))
 . "$(dirname "${BASH_SOURCE[0]}")/scene-args.sh"
 read_scenes "gen:room:10000 gen:balls:10000 gen:rings:10000 gen:tetra:10000 gen:tree:10000 gen:gears:10000" "$@"
 tmp=$(mktemp -d)

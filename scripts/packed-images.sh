@@ -4,13 +4,13 @@
 # `kdrt sim` the memory bytes per ray, the cache hit rates and the cycles per
 # ray, at the default memory and at a memory-bound one (2 bytes/cycle,
 # latency 100). Prints a Markdown table.
-#   scripts/packed-images.sh [KDRT] [RES] SCENE...   (default build/bin/kdrt, 128x128)
+#   scripts/packed-images.sh [KDRT] [RES] SCENE... [-- SIM OPTIONS]   (default build/bin/kdrt, 128x128)
 set -euo pipefail
 kdrt=${1:-build/bin/kdrt}
 res=${2:-128x128}
-shift 2 || true
-scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(gen:balls:10000 gen:rings:10000 gen:tetra:10000)
+shift $(($# < 2 ? $# : 2))
+. "$(dirname "${BASH_SOURCE[0]}")/scene-args.sh"
+read_scenes "gen:balls:10000 gen:rings:10000 gen:tetra:10000" "$@"
 presets=$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname "$0")/../cmake/presets.cmake")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -20,11 +20,11 @@ for scene in "${scenes[@]}"; do
   "$kdrt" info "$scene" --json "$tmp/info.json" > /dev/null
   for p in $presets; do
     fmt=${p%%:*}
-    echo "packed-images: $scene $fmt" >&2
-    "$kdrt" sim "$scene" --format "$fmt" --res "$res" -q -o "$tmp/a.png" --json "$tmp/a.json" 2> "$tmp/err" ||
-      { cat "$tmp/err" >&2; exit 1; }
+    echo "packed-images: $scene $fmt ${extra[*]:-}" >&2
+    "$kdrt" sim "$scene" --format "$fmt" --res "$res" -q -o "$tmp/a.png" --json "$tmp/a.json" "${extra[@]}" \
+      2> "$tmp/err" || { cat "$tmp/err" >&2; exit 1; }
     "$kdrt" sim "$scene" --format "$fmt" --res "$res" -q -o "$tmp/b.png" --json "$tmp/b.json" \
-      --mem-bw 2 --mem-latency 100 2> "$tmp/err" || { cat "$tmp/err" >&2; exit 1; }
+      --mem-bw 2 --mem-latency 100 "${extra[@]}" 2> "$tmp/err" || { cat "$tmp/err" >&2; exit 1; }
     python3 - "$scene" "$fmt" "$tmp/info.json" "$tmp/a.json" "$tmp/b.json" <<'PY'
 import json, sys
 scene, fmt, info, a, b = sys.argv[1:]

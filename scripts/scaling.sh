@@ -12,7 +12,7 @@ res=${2:-128x128}
 cores_list=${3:-1 2 4 8}
 bws=${4:-16 4}
 out=${5:-scaling}
-shift 5 || true
+shift $(($# < 5 ? $# : 5))
 . "$(dirname "${BASH_SOURCE[0]}")/scene-args.sh"
 read_scenes "gen:balls:10000 gen:tree:10000" "$@"
 tmp=$(mktemp -d)

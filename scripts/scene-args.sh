@@ -1,5 +1,5 @@
 # Sourced by the measurement scripts that run `kdrt sim` over scenes
-# (efficiency.sh, cache-ways.sh, scaling.sh): their arguments end in
+# (efficiency.sh, cache-ways.sh, scaling.sh, packed-images.sh): their arguments end in
 # `SCENE... [-- SIM OPTIONS]`.
 #   read_scenes "DEFAULT SCENES" "$@"   (the arguments after the script's own)
 # sets `scenes` (the defaults when none is given) and `extra` (the options

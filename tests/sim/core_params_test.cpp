@@ -37,17 +37,17 @@ TEST(CoreParams, TableDefaultsAreTheRtlDefaults) {
 
 TEST(CoreParams, KeyNamesEveryParameter) {
   CoreConfig c = DefaultConfig(fp::kFp32);
-  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.64-r8-g8-w1");
+  EXPECT_EQ(c.Key(), "e8m23-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4");
   c[kTriCacheLines] = 128;
-  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.128-r8-g8-w1");
+  EXPECT_EQ(c.Key(), "e8m23-t32-s32-n24-i24-a28-c64.64.128-r16-g8-w4");
   EXPECT_EQ(c.Json()["TriCacheLines"], 128);
   EXPECT_EQ(c.VerilatorDefines()[kTriCacheLines], "-GTriCacheLines=128");
   c[kCacheTargets] = 1;
-  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.128-r8-g1-w1");
+  EXPECT_EQ(c.Key(), "e8m23-t32-s32-n24-i24-a28-c64.64.128-r16-g1-w4");
   EXPECT_EQ(c.VerilatorDefines()[kCacheTargets], "-GCacheTargets=1");
-  c[kCacheWays] = 4;
-  EXPECT_EQ(c.Key(), "e8m23-t16-s32-n24-i24-a28-c64.64.128-r8-g1-w4");
-  EXPECT_EQ(c.VerilatorDefines().back(), "-GCacheWays=4");
+  c[kCacheWays] = 2;
+  EXPECT_EQ(c.Key(), "e8m23-t32-s32-n24-i24-a28-c64.64.128-r16-g1-w2");
+  EXPECT_EQ(c.VerilatorDefines().back(), "-GCacheWays=2");
 }
 
 TEST(CoreParams, PrebuiltModelsAreBuiltWithTheDefaults) {

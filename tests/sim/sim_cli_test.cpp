@@ -330,7 +330,8 @@ TEST_F(SimCli, AssociativeCaches) {
   EXPECT_EQ(f["perf_counts"], j["perf_counts"]);
   EXPECT_EQ(f["thread_states"], j["thread_states"]);
   EXPECT_EQ(f["memory"]["bytes_read"], j["memory"]["bytes_read"]);
-  const RunResult d = RunKdrt(common + " --model fast -o " + Path("d.png") + " --json " + Path("d.json"));
+  const RunResult d =
+      RunKdrt(common + " --cache-ways 1 --model fast -o " + Path("d.png") + " --json " + Path("d.json"));
   ASSERT_EQ(d.exit_code, 0) << d.output;
   const nlohmann::json dj = ReadJson(Path("d.json"));
   EXPECT_EQ(dj["model"]["CacheWays"].get<int>(), 1);
