@@ -74,9 +74,31 @@ class Cache {
   Cache(int lines, int ways, int line_beats, int mshrs, int targets, bool miss_port)
       : set_mask_(static_cast<uint64_t>(lines / ways) - 1), ways_(ways), way_bits_(__builtin_ctz(ways)),
         beats_(line_beats), targets_(targets), mshrs_(mshrs), miss_port_(miss_port),
-        all_mshrs_(mshrs >= 64 ? ~uint64_t{0} : (uint64_t{1} << mshrs) - 1), lines_(lines),
+        all_mshrs_(mshrs >= 64 ? ~uint64_t{0} : (uint64_t{1} << mshrs) - 1), lines_(lines, kNoLine),
         plru_(ways > 1 ? lines / ways : 0, 0), mshr_(mshrs), keys_(mshrs, 0),
-        tags_(static_cast<size_t>(mshrs) * targets) {}
+        tags_(static_cast<size_t>(mshrs) * targets) {
+    // The tree pseudo-LRU as tables: what a touch of each way clears and
+    // sets, and the victim of each tree state (at most 2^15 for 16 ways).
+    touch_clear_.assign(ways, 0);
+    touch_set_.assign(ways, 0);
+    for (int way = 0; way < ways; ++way) {
+      for (int l = 0; l < way_bits_; ++l) {
+        const int node = (1 << l) - 1 + (way >> (way_bits_ - l));
+        const uint32_t bit = (static_cast<uint32_t>(way) >> (way_bits_ - 1 - l)) & 1u;
+        touch_clear_[way] |= 1u << node;
+        touch_set_[way] |= (bit ^ 1u) << node;
+      }
+    }
+    victim_.assign(ways > 1 ? size_t{1} << (ways - 1) : 0, 0);
+    for (size_t tree = 0; tree < victim_.size(); ++tree) {
+      int way = 0;
+      for (int l = 0; l < way_bits_; ++l) {
+        const int node = (1 << l) - 1 + (way >> (way_bits_ - l));
+        way |= static_cast<int>((tree >> node) & 1u) << (way_bits_ - 1 - l);
+      }
+      victim_[tree] = static_cast<uint8_t>(way);
+    }
+  }
 
   // Registered outputs, valid before Eval().
   bool resp_valid() const { return hit_valid_ | del_valid_; }
@@ -123,10 +145,9 @@ class Cache {
     uint32_t sent = 0, got = 0;
     int cnt = 0, out = 0;
   };
-  struct Line {
-    bool valid = false;
-    uint64_t key = 0;
-  };
+  // An empty line's key: no request's (keys are line addresses or triangle
+  // ids of at most 32 bits).
+  static constexpr uint64_t kNoLine = ~uint64_t{0};
   // What Eval() decided, for Commit().
   struct Comb {
     Req m;
@@ -138,15 +159,16 @@ class Cache {
     uint64_t hit_set = 0;
   };
 
-  // The miss registers in use for `key`.
+  // The miss registers in use for `key`: those of its bucket whose key it is.
   uint64_t Matches(uint64_t key) const {
     uint64_t mask = 0;
-    for (uint64_t v = valid_; v; v &= v - 1) {
+    for (uint64_t v = bucket_[Bucket(key)] & valid_; v; v &= v - 1) {
       const int m = __builtin_ctzll(v);
       mask |= static_cast<uint64_t>(keys_[m] == key) << m;
     }
     return mask;
   }
+  static size_t Bucket(uint64_t key) { return (key ^ (key >> 6)) & (kBuckets - 1); }
 
   void EvalRequests(const Req& r1, const Req& r2) {
     const bool use_r2 = r2.valid && miss_port_;
@@ -222,7 +244,9 @@ class Cache {
       const int idx = c_.m_join ? c_.m_join_idx : c_.free_idx;
       Mshr& s = mshr_[idx];
       if (!c_.m_join) {
+        bucket_[Bucket(keys_[idx])] &= ~(uint64_t{1} << idx);
         keys_[idx] = c_.m.key;
+        bucket_[Bucket(keys_[idx])] |= uint64_t{1} << idx;
         s.addr = c_.m.addr;
         s.sent = s.got = 0;
         s.cnt = 0;
@@ -249,7 +273,7 @@ class Cache {
       del_tag_ = tags_[static_cast<size_t>(d) * targets_ + s.out];
       ++s.out;
       const uint64_t set = keys_[d] & set_mask_;
-      lines_[set * ways_ + fill_way] = {true, keys_[d]};
+      lines_[set * ways_ + fill_way] = keys_[d];
       if (ways_ > 1) Touch(set, fill_way);
       del_valid_ = true;
       if (s.out == s.cnt) {
@@ -266,44 +290,27 @@ class Cache {
   // The way of the key's set that holds its line, or -1. Line set * ways + w
   // is way w of the set (rtl/rt_cache.sv).
   int FindWay(uint64_t key) const {
-    if (ways_ == 1) {
-      const Line& l = lines_[key & set_mask_];
-      return l.valid && l.key == key ? 0 : -1;
-    }
-    const Line* set = &lines_[(key & set_mask_) * ways_];
+    if (ways_ == 1) return lines_[key & set_mask_] == key ? 0 : -1;
+    const uint64_t* set = &lines_[(key & set_mask_) * ways_];
     for (int w = 0; w < ways_; ++w) {
-      if (set[w].valid && set[w].key == key) return w;
+      if (set[w] == key) return w;
     }
     return -1;
   }
   // The tree pseudo-LRU of a set: node n at level l is bit 2^l - 1 + n, and
   // a bit of 0 puts the victim in the lower half. A touch points every node
-  // on the way's path away from it.
-  void Touch(uint64_t set, int way) {
-    uint32_t& t = plru_[set];
-    for (int l = 0; l < way_bits_; ++l) {
-      const int node = (1 << l) - 1 + (way >> (way_bits_ - l));
-      const uint32_t bit = (static_cast<uint32_t>(way) >> (way_bits_ - 1 - l)) & 1u;
-      t = (t & ~(1u << node)) | (bit ^ 1u) << node;
-    }
-  }
-  int Victim(uint64_t set) const {
-    int way = 0;
-    for (int l = 0; l < way_bits_; ++l) {
-      const int node = (1 << l) - 1 + (way >> (way_bits_ - l));
-      way |= static_cast<int>((plru_[set] >> node) & 1u) << (way_bits_ - 1 - l);
-    }
-    return way;
-  }
+  // on the way's path away from it (the tables built in the constructor).
+  void Touch(uint64_t set, int way) { plru_[set] = (plru_[set] & ~touch_clear_[way]) | touch_set_[way]; }
+  int Victim(uint64_t set) const { return ways_ > 1 ? victim_[plru_[set]] : 0; }
   // Where a completed miss writes its line: the way that holds it already,
   // else the lowest invalid way, else the victim (of the registered state).
   int FillWay(uint64_t key) const {
     const uint64_t set = key & set_mask_;
-    const Line* lines = &lines_[set * ways_];
+    const uint64_t* lines = &lines_[set * ways_];
     int way = FindWay(key);
     if (way >= 0) return way;
     for (int w = ways_ - 1; w >= 0; --w) {
-      if (!lines[w].valid) way = w;
+      if (lines[w] == kNoLine) way = w;
     }
     return way >= 0 ? way : Victim(set);
   }
@@ -314,8 +321,14 @@ class Cache {
   int beats_, targets_, mshrs_;
   bool miss_port_;
   uint64_t all_mshrs_;
-  std::vector<Line> lines_;
-  std::vector<uint32_t> plru_;  // a set's tree bits (ways > 1)
+  std::vector<uint64_t> lines_;  // each line's key, or kNoLine
+  std::vector<uint32_t> plru_;   // a set's tree bits (ways > 1)
+  std::vector<uint32_t> touch_clear_, touch_set_;
+  std::vector<uint8_t> victim_;
+  // The miss registers whose key falls in each bucket (a register is in the
+  // bucket of the last key it took), so a lookup compares few keys.
+  static constexpr size_t kBuckets = 64;
+  std::array<uint64_t, kBuckets> bucket_{};
   std::vector<Mshr> mshr_;
   std::vector<uint64_t> keys_;  // each miss register's line
   std::vector<uint64_t> tags_;  // the merged requests of miss register m: [m * targets_, + cnt)
