@@ -344,7 +344,8 @@ class Cache {
 constexpr int kBitRayIn = PerfBit("ray_in"), kBitRayOut = PerfBit("ray_out"), kBitBusy = PerfBit("busy"),
               kBitTravBusy = PerfBit("trav_busy"), kBitTravLeaf = PerfBit("trav_leaf"),
               kBitListBusy = PerfBit("list_busy"), kBitIsectBusy = PerfBit("isect_busy"),
-              kBitStallMem = PerfBit("stall_mem"), kBitStallStack = PerfBit("stall_stack");
+              kBitStallMem = PerfBit("stall_mem"), kBitStallStack = PerfBit("stall_stack"),
+              kBitOverflow = PerfBit("overflow");
 
 enum State : uint8_t { kFree, kSetup, kFetch, kWaitNode, kTrav, kLeaf, kExit, kDone };
 
@@ -397,11 +398,17 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   TraceOptions to;
   to.format = cfg.Format();
   to.query = spec.query;
+  // A path that ends on an inner node is a ray whose push met a full stack
+  // (StackDepth below the tree's depth, --allow-overflow): its thread goes
+  // from TRAV to DONE, and its record is the hit it had (rt_thread_fsm).
+  to.stack_depth = cfg[kStackDepth];
   RayCounters totals;
   for (size_t i = 0; i < rays.size(); ++i) {
     RayCounters c;
     out.result.hits[i] = TraceOne(image, rays[i], to, &c, &paths[i]);
     out.result.hit_count += out.result.hits[i].IsHit();
+    out.result.overflow[i] = c.overflows > 0;
+    out.result.overflows += c.overflows > 0;
     totals += c;
   }
   if (reference_totals) *reference_totals = totals;
@@ -559,8 +566,11 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     }
     const bool trav_out = !trav_pipe.empty() && trav_pipe.front().cycle == cycle;
     if (trav_out) {
-      Move(trav_pipe.front().thread, kFetch);
+      const int t = trav_pipe.front().thread;
       trav_pipe.pop();
+      const bool overflow = th[t].next == th[t].end;  // the push met a full stack
+      Move(t, overflow ? kDone : kFetch);
+      if (overflow) ++perf[kBitOverflow];
     }
     // The test retired this cycle (isect_valid), if any.
     int retired = -1;

@@ -12,8 +12,8 @@
 //
 // Every performance event of rt_perf_events is counted as the RTL counts it
 // (the backpressure and unit stalls are zero: the units and the harness are
-// always ready). Not modelled: stack overflows (a scene deeper than
-// StackDepth is refused).
+// always ready). A StackDepth below the tree's depth (--allow-overflow) is
+// modelled as the core does it: the push onto a full stack ends the ray.
 #pragma once
 
 #include <cstdint>

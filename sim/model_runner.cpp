@@ -221,8 +221,8 @@ ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, co
   out.report = ReportJson(ri);
   out.report["cycle_model"] = "fast";
   out.report["notes"] = {"fast cycle model (sim/fast_model.h): cycles and every performance event as the RTL "
-                         "counts them (cycle-exact where tested: tests/sim/sim_cli_test.cpp); stack overflows are "
-                         "not modelled (a tree deeper than the stack is refused)"};
+                         "counts them (cycle-exact where tested: tests/sim/sim_cli_test.cpp); a stack overflow "
+                         "ends the ray as in the RTL"};
   out.hits = std::move(outcome.result.hits);
   return out;
 }

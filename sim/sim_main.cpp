@@ -89,6 +89,9 @@ int Run(const ModelArgs& args) {
   TraceOptions to;
   to.format = config.Format();
   to.query = query;
+  // The reference with the core's stack: a ray whose push meets a full stack
+  // ends there in both (--allow-overflow), so its record is compared too.
+  to.stack_depth = config[kStackDepth];
   TraceStats ts;
   std::vector<RayCounters> per_ray;
   std::vector<Hit> reference = TraceRays(image, rays, to, &ts, &per_ray);
@@ -158,6 +161,19 @@ int Run(const ModelArgs& args) {
     std::fprintf(stderr, "\nkdrt sim: %s\n", e.what());
     return 3;
   }
+  // The records matched the reference's; so must the rays whose stack
+  // overflowed (the reference ends them at the same push).
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const bool want = per_ray[i].overflows > 0;
+    if ((run.result.overflow[i] != 0) != want) {
+      std::fflush(stdout);
+      std::fprintf(stderr, "\nkdrt sim: co-simulation mismatch: ray %zu %s its stack (StackDepth %d) in the RTL "
+                           "but %s in the reference\n",
+                   i, run.result.overflow[i] ? "overflowed" : "did not overflow", config[kStackDepth],
+                   want ? "overflowed" : "not");
+      return 3;
+    }
+  }
 
   OutputSet outputs;
   outputs.Add(args.hits_out, [&](const std::string& tmp) {
@@ -171,7 +187,8 @@ int Run(const ModelArgs& args) {
   outputs.Commit();
   if (run.result.overflows > 0) {
     std::fprintf(stderr, "kdrt sim: %llu rays overflowed the traversal stack (StackDepth %d, the tree needs %d); "
-                         "their records are not valid answers\n",
+                         "their records end at the overflowing push, as the reference's with the same stack do, "
+                         "and are not valid answers\n",
                  static_cast<unsigned long long>(run.result.overflows), config[kStackDepth], req.stack_depth);
   }
   return 0;

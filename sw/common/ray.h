@@ -39,10 +39,12 @@ struct RayCounters {
   uint32_t nodes = 0;      // inner and leaf nodes fetched
   uint32_t leaves = 0;     // leaf nodes fetched (including empty ones)
   uint32_t tri_tests = 0;  // ray/triangle tests
+  uint32_t overflows = 0;  // rays ended by a push onto a full stack (TraceOptions::stack_depth)
   RayCounters& operator+=(const RayCounters& o) {
     nodes += o.nodes;
     leaves += o.leaves;
     tri_tests += o.tri_tests;
+    overflows += o.overflows;
     return *this;
   }
 };

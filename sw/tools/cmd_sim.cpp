@@ -85,11 +85,6 @@ int RunSim(SimArgs args) {
     std::printf("executable     %s (%s)\n", loc.path.c_str(), state);
     return 0;
   }
-  if (args.model != "rtl" && choice.config[sim::kStackDepth] < req.stack_depth) {
-    throw InputError("--model " + args.model + ": the fast model does not model stack overflows, and StackDepth " +
-                     std::to_string(choice.config[sim::kStackDepth]) + " is below the tree's depth " +
-                     std::to_string(req.stack_depth) + " (use --model rtl)");
-  }
   if (args.build_model) {
     if (!loc.built) sim::BuildModel(choice, loc);
     std::printf("model          %s: %s\n", choice.config.Key().c_str(), loc.path.c_str());

@@ -19,6 +19,10 @@ const char* IsectMethodName(IsectMethod m) { return m == IsectMethod::kWatertigh
 
 namespace {
 
+int StackLimit(const TraceOptions& options) {
+  return options.stack_depth > 0 ? options.stack_depth : kMaxTraversalStack;
+}
+
 // Runs fn(arith) with the arithmetic policy for the format: native float for
 // fp32, native double for fp64 (the reference), the soft-float model for the
 // rest (SoftArith refuses anything that is not a soft format).
@@ -40,7 +44,7 @@ auto WithArith(const fp::Format& format, Fn&& fn) {
 Hit TraceOne(const ImageView& image, const Ray& ray, const TraceOptions& options, RayCounters* counters,
              std::vector<uint32_t>* path) {
   return WithArith(options.format, [&](const auto& a) {
-    return ToHit(a, TraceRay(a, image, ray, options.isect, options.query, counters, path));
+    return ToHit(a, TraceRay(a, image, ray, options.isect, options.query, counters, path, StackLimit(options)));
   });
 }
 
@@ -54,7 +58,8 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
       size_t begin, end;
       while (next_chunk(&begin, &end)) {
         for (size_t i = begin; i < end; ++i) {
-          hits[i] = ToHit(a, TraceRay(a, image, rays[i], options.isect, options.query, &counters[i]));
+          hits[i] = ToHit(a, TraceRay(a, image, rays[i], options.isect, options.query, &counters[i], nullptr,
+                                      StackLimit(options)));
         }
       }
       return 0;

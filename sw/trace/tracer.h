@@ -22,6 +22,9 @@ struct TraceOptions {
   IsectMethod isect = IsectMethod::kWatertight;
   Query query = Query::kClosest;  // kAny: shadow rays (common/ray.h)
   int threads = 0;  // 0: all hardware threads; results do not depend on it
+  // 0: a stack as deep as the tree; N: the core's StackDepth N (a push onto N
+  // entries ends the ray, RayCounters::overflows; trace/traversal.h).
+  int stack_depth = 0;
   bool progress = false;  // a progress line on stderr for long runs
 };
 

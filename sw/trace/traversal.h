@@ -29,7 +29,7 @@
 namespace kdrt {
 
 // A validated image is less than kMaxImageDepth deep, and a push happens at
-// most once per level, so the stack cannot overflow.
+// most once per level, so this stack cannot overflow.
 inline constexpr int kMaxTraversalStack = kMaxImageDepth;
 
 template <class A>
@@ -135,9 +135,14 @@ Hit ToHit(const A& a, const TraceResult<A>& r) {
 }
 
 // `path`, when given, receives the index of every node fetched, in order.
+// `stack_limit` below the tree's depth models the core's StackDepth: a push
+// onto that many entries ends the ray with the hit it has so far, as
+// rt_core does (its thread goes to DONE with the overflow bit, rt_thread_fsm),
+// and counts an overflow.
 template <class A>
 TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, IsectMethod isect, Query query,
-                        RayCounters* counters = nullptr, std::vector<uint32_t>* path = nullptr) {
+                        RayCounters* counters = nullptr, std::vector<uint32_t>* path = nullptr,
+                        int stack_limit = kMaxTraversalStack) {
   using T = typename A::T;
   const FramedRay framed = ToFrame(ray, image.frame());
   const RaySetup<A> r = SetupRay(a, framed.ray);
@@ -175,6 +180,10 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
       } else if (step.action == TraversalAction::kSecond) {
         node = second;
       } else {
+        if (sp >= stack_limit) {
+          if (counters) ++counters->overflows;
+          return best;
+        }
         stack[sp++] = Entry{second, step.t_lo, t1};
         if (InPlane(a, step.t_lo)) ++in_plane;
         node = first;

@@ -377,7 +377,7 @@ INSTANTIATE_TEST_SUITE_P(Presets, InPlaneRays, ::testing::Values("fp32", "fp24",
 TEST_F(SimCli, FastModelOptionErrors) {
   for (const std::string& bad : std::vector<std::string>{"--model slow", "--model fast --cores 2",
                                                           "--model fast --trace " + Path("w.fst"),
-                                "--model both --cores 2", "--model fast --stack-depth 2 --allow-overflow"}) {
+                                "--model both --cores 2"}) {
     const RunResult r = RunKdrt("sim gen:room:300 --res 8x8 -o " + Path("x.png") + " " + bad);
     EXPECT_EQ(r.exit_code, 1) << bad << ": " << r.output;
     EXPECT_NE(r.output.find("--model"), std::string::npos) << r.output;
@@ -489,6 +489,39 @@ TEST_F(SimCli, StackSmallerThanTheTreeIsRefused) {
   EXPECT_NE(s.exit_code, 0);
   EXPECT_NE(s.output.find("--stack-depth >="), std::string::npos) << s.output;
   EXPECT_EQ(FileCount(), 0u);
+}
+
+// With --allow-overflow a stack smaller than the tree ends a ray at the push
+// that meets the full stack (rt_thread_fsm: TRAV -> DONE). The reference
+// does the same with the core's stack, so every record is compared, the
+// overflowed rays included, and both must overflow the same rays; the fast
+// model gives the RTL's cycles and events.
+TEST_F(SimCli, StackOverflowMatchesTheReferenceAndTheFastModel) {
+  for (const char* format : {"fp32", "bf16"}) {
+    SCOPED_TRACE(format);
+    const RunResult r = RunKdrt(std::string("sim gen:rings:800 --res 16x16 --stack-depth 3 --allow-overflow ") +
+                                "--model both -q --format " + format + " -o " + Path("x.png") + " --json " +
+                                Path("x.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("rays overflowed the traversal stack (StackDepth 3"), std::string::npos) << r.output;
+    const nlohmann::json j = ReadJson(Path("x.json"));
+    const nlohmann::json& f = j["fast"]["report"];
+    EXPECT_GT(j["overflows"].get<uint64_t>(), 0u);
+    EXPECT_LT(j["overflows"].get<uint64_t>(), j["rays"].get<uint64_t>());
+    EXPECT_EQ(j["perf_counts"]["overflow"], j["overflows"]);
+    EXPECT_EQ(f["overflows"], j["overflows"]);
+    EXPECT_EQ(f["cycles"], j["cycles"]);
+    EXPECT_EQ(f["perf_counts"], j["perf_counts"]);
+    EXPECT_EQ(f["thread_states"], j["thread_states"]);
+  }
+  // A reference that disagrees on an overflowed ray's record (ray 150 of
+  // these camera rays overflows) is caught.
+  const RunResult bad = RunKdrt("sim gen:rings:800 --res 16x16 --stack-depth 3 --allow-overflow -q -o " +
+                                Path("y.png") + " --corrupt-reference 150");
+  EXPECT_EQ(bad.exit_code, 3) << bad.output;
+  EXPECT_NE(bad.output.find("co-simulation mismatch"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("ray 150"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find(", overflow 1"), std::string::npos) << bad.output;
 }
 
 TEST_F(SimCli, SceneLargerThanTheMemoryIsRefused) {

@@ -73,6 +73,49 @@ TEST(Traversal, SoftFp32IsBitIdenticalToNative) {
   }
 }
 
+// A stack smaller than the tree (the core's StackDepth under
+// --allow-overflow) ends a ray at the push that meets the full stack: the
+// path stops on that inner node, the hit is the one found so far, and the
+// ray counts one overflow. A stack as deep as the tree never overflows.
+TEST(Traversal, StackLimitEndsTheRayAtTheOverflowingPush) {
+  Prepared p(GenerateScene("balls", 3000));
+  const ImageView image = p.view();
+  const std::vector<Ray> rays = testing::CameraRays(p.scene, 48);
+  fp::ScopedFtzDaz ftz;
+  const fp::NativeF32Arith a;
+  int overflowed = 0, hit_before = 0;
+  for (const Ray& ray : rays) {
+    RayCounters full, small;
+    std::vector<uint32_t> full_path, small_path;
+    const Hit whole = ToHit(a, TraceRay(a, image, ray, IsectMethod::kWatertight, Query::kClosest, &full,
+                                        &full_path, image.header().max_depth));
+    const Hit cut = ToHit(a, TraceRay(a, image, ray, IsectMethod::kWatertight, Query::kClosest, &small,
+                                      &small_path, 2));
+    ASSERT_EQ(full.overflows, 0u);
+    ASSERT_LE(small.overflows, 1u);
+    if (small.overflows == 0) {
+      ASSERT_TRUE(testing::SameBits(whole, cut));
+      ASSERT_EQ(full_path, small_path);
+      continue;
+    }
+    ++overflowed;
+    // The same walk up to the push that found the stack full, on an inner node.
+    ASSERT_LT(small_path.size(), full_path.size());
+    ASSERT_TRUE(std::equal(small_path.begin(), small_path.end(), full_path.begin()));
+    ASSERT_FALSE(image.node(small_path.back()).IsLeaf());
+    // A hit found before the overflow is never closer than the whole walk's.
+    if (cut.IsHit()) {
+      ++hit_before;
+      ASSERT_TRUE(whole.IsHit());
+      ASSERT_LE(whole.t, cut.t);
+    }
+  }
+  EXPECT_GT(overflowed, 100);
+  EXPECT_LT(overflowed, static_cast<int>(rays.size()));
+  RecordProperty("overflowed", overflowed);
+  RecordProperty("hit_before_overflow", hit_before);
+}
+
 // The kd-tree's closest hit on such rays is brute force's, but for ties
 // (IsTie: two triangles within a few ulps at a shared vertex or edge). Rays
 // in a plane often pass exactly through shared vertices and edges: on gears'
