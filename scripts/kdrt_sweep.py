@@ -38,9 +38,9 @@ PARAMS = {
     "cores": "--cores",
     "l2_kb": "--l2-kb",
 }
-SPEC_KEYS = {"scenes", "formats", "res", "params", "model", "shade"}
+SPEC_KEYS = {"scenes", "formats", "res", "params", "model", "shade", "allow_overflow"}
 # What each point reports, from `kdrt sim --json`.
-RESULTS = ["rays", "cycles", "cycles_per_ray", "bound_cycles_per_ray", "efficiency", "rays_per_cycle",
+RESULTS = ["rays", "cycles", "cycles_per_ray", "bound_cycles_per_ray", "efficiency", "rays_per_cycle", "overflows",
            "bytes_per_ray", "node_hit_rate", "tri_hit_rate", "sim_seconds",
            "fast_cycles_per_ray", "fast_error", "fast_speedup"]  # the last three: model both
 
@@ -100,6 +100,7 @@ def load_spec(path):
         "params": {k: as_list(v, "params." + k, path) for k, v in params.items()},
         "models": models,
         "shade": bool(spec.get("shade", False)),
+        "allow_overflow": bool(spec.get("allow_overflow", False)),
     }
 
 
@@ -109,6 +110,8 @@ def expand(spec):
     for scene, fmt, model, values in itertools.product(spec["scenes"], spec["formats"], spec["models"],
                                                        itertools.product(*[spec["params"][n] for n in names])):
         p = {"scene": scene, "format": fmt, "model": model, "res": spec["res"], "shade": spec["shade"]}
+        if spec["allow_overflow"]:  # only then part of the id: earlier sweeps keep theirs
+            p["allow_overflow"] = True
         p.update(dict(zip(names, values)))
         key = json.dumps(p, sort_keys=True)
         p["id"] = hashlib.sha1(key.encode()).hexdigest()[:16]
@@ -123,6 +126,8 @@ def sim_args(point):
             a += [flag, str(point[name])]
     if point["shade"]:
         a.append("--shade")
+    if point.get("allow_overflow"):
+        a.append("--allow-overflow")
     return a
 
 
@@ -188,6 +193,7 @@ def row_of(point, names, report):
         "bound_cycles_per_ray": frame["bound_cycles_per_ray"] if frame else report["bound_cycles_per_ray"],
         "efficiency": frame["efficiency"] if frame else report["efficiency"],
         "rays_per_cycle": report["rays_per_cycle"],
+        "overflows": report.get("overflows", 0),
         "bytes_per_ray": mem.get("bytes_per_ray"),
         "node_hit_rate": hit.get("node"),
         "tri_hit_rate": hit.get("tri"),

@@ -36,6 +36,25 @@ cp "$work/local/sweep.csv" "$work/first.csv"
 grep -q "8 done already, 0 to run" "$work/again.err" || { cat "$work/again.err"; fail "the second run ran points"; }
 cmp -s "$work/first.csv" "$work/local/sweep.csv" || fail "the resumed sweep changed sweep.csv"
 
+# A stack smaller than the tree (allow_overflow: the fast model ends a ray at
+# the push that meets the full stack, as the RTL does): rays overflow at
+# depth 2 and none at 40, and the CSV says so.
+cat > "$work/stack.yaml" << 'SPEC'
+scenes: [gen:balls:300]
+res: 8x8
+model: fast
+allow_overflow: true
+params:
+  stack_depth: [2, 40]
+SPEC
+"$kdrt" sweep "$work/stack.yaml" -o "$work/stack" --jobs 2 > /dev/null 2> "$work/stack.err" ||
+  { cat "$work/stack.err"; fail "stack-depth sweep"; }
+/usr/bin/python3 - "$work/stack/sweep.csv" << 'PY' || fail "overflows column"
+import csv, sys
+rows = {int(r["stack_depth"]): int(r["overflows"]) for r in csv.DictReader(open(sys.argv[1]))}
+assert rows[2] > 0 and rows[40] == 0, rows
+PY
+
 # A Dask cluster on loopback.
 port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 dask-scheduler --host 127.0.0.1 --port "$port" --no-dashboard > "$work/scheduler.log" 2>&1 &
