@@ -56,6 +56,9 @@ void CheckStructureTraceOptions(const TraceOptions& options) {
   if (options.isect != IsectMethod::kWatertight) {
     throw InputError("the software structures use the watertight test only (not --isect moller)");
   }
+  if (TravFormat(options).Name() != options.format.Name()) {
+    throw InputError("the software structures trace in one format (no --trav-format); it is the kd-tree's option");
+  }
 }
 
 Hit TraceStructureOne(const Structure& s, const Frame& frame, const Ray& ray, const TraceOptions& options,

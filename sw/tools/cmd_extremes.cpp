@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -27,6 +28,7 @@ namespace {
 struct ExtremesArgs {
   std::string formats;  // default: the presets
   std::string reference = "fp64";
+  std::string trav_format;  // empty: each format traverses in itself
   std::string cases;    // a regular expression over the case names
   std::string json;
   bool reduced = false;
@@ -65,6 +67,17 @@ int Run(const ExtremesArgs& args) {
   const std::vector<fp::Format> formats = ParseFormats(args.formats);
   const fp::Format reference = fp::ParseFormat(args.reference);
   const std::regex pick(args.cases.empty() ? ".*" : args.cases);
+  std::optional<fp::Format> trav;
+  if (!args.trav_format.empty()) {
+    if (args.sim) throw InputError("--trav-format is model only: the RTL core (--sim) has one datapath format");
+    trav = fp::ParseFormat(args.trav_format);
+    for (const fp::Format& f : formats) {
+      TraceOptions check;
+      check.format = f;
+      check.trav_format = trav;
+      CheckTravFormat(check);
+    }
+  }
   std::vector<ExtremeCase> cases;
   for (ExtremeCase& c : MakeExtremeCases(args.reduced)) {
     if (std::regex_search(c.name, pick)) cases.push_back(std::move(c));
@@ -95,7 +108,9 @@ int Run(const ExtremesArgs& args) {
     if (!args.quiet) std::printf("%-34s %7zu %7s", c.name.c_str(), c.rays.size(), req.MinimalFormat().c_str());
     for (const fp::Format& f : formats) {
       to.format = f;
+      to.trav_format = trav;
       const std::vector<Hit> hits = TraceRays(image, c.rays, to);
+      to.trav_format.reset();
       Cell cell = Measure(c, hits, ref);
       cell.warning = req.Shortfall(f);
       if (args.sim) {
@@ -131,10 +146,13 @@ int Run(const ExtremesArgs& args) {
                 "W: the scene's precision requirement says the format cannot represent the case (the JSON has "
                 "the warning)\n",
                 reference.Name().c_str(), args.sim ? "; sim: RTL records that differ from render's" : "");
+    if (trav) std::printf("every format traversed in %s (--trav-format; the test in the format)\n", trav->Name().c_str());
   }
   if (!args.json.empty()) {
     OutputSet outputs;
-    AddJsonOutput(outputs, args.json, {{"command", "extremes"}, {"reference", reference.Name()}, {"cases", rows}});
+    nlohmann::json j = {{"command", "extremes"}, {"reference", reference.Name()}, {"cases", rows}};
+    if (trav) j["trav_format"] = trav->Name();
+    AddJsonOutput(outputs, args.json, j);
     outputs.Commit();
   }
   return 0;
@@ -148,6 +166,9 @@ Runner AddExtremesCommand(CLI::App& app) {
       "extremes", "The numerics suite: holes and disagreement with the reference format, case by format");
   cmd->add_option("--formats", args->formats, "Comma-separated formats (default: " + fp::PresetNames() + ")");
   cmd->add_option("--reference", args->reference, "The format the others are compared with")->capture_default_str();
+  cmd->add_option("--trav-format", args->trav_format,
+                  "Traverse in this format (at least every listed format's bits), test in each listed one; "
+                  "model only");
   cmd->add_option("--cases", args->cases, "Only the cases whose name matches this regular expression");
   cmd->add_option("--json", args->json, "Machine-readable results");
   cmd->add_flag("--reduced", args->reduced, "The smaller set `make test` runs");

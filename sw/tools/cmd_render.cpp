@@ -32,6 +32,7 @@ struct RenderArgs {
   std::string json;
   std::string isect = "watertight";
   std::string format = "fp32";
+  std::string trav_format;  // empty: --format
   std::string image_format = "native";
   std::string rays;
   std::string camera;
@@ -62,15 +63,20 @@ int Run(const RenderArgs& args) {
   }
   TraceOptions to;
   to.format = format;
+  if (!args.trav_format.empty()) to.trav_format = fp::ParseFormat(args.trav_format);
+  const bool mixed = TravFormat(to).Name() != format.Name();
+  CheckTravFormat(to);
   to.isect = ParseIsectMethod(args.isect);
   to.threads = args.threads;
   if (!IsKdTree(args.scene.accel)) CheckStructureTraceOptions(to);  // before the build
   PreparedScene p = PrepareScene(args.scene);
   const bool mailbox = p.structure && p.structure->uses_mailbox();
-  const ImageView image(p.image);
+  const ImageView image(p.image);  // the scene as given: what the precision check reads
   // The image the tracer reads: the format's own packed image (splits and
   // vertices rounded once, as a load from the fp32 image rounds them: the
   // hits are the same), or the fp32 image.
+  // A packed image holds splits and triangles in one format; a separate
+  // traversal format reads the fp32 image (its splits unrounded).
   const img::ImageLayout layout = args.image_format == "fp32" ? img::ImageLayout{} : LayoutFor(format);
   const std::vector<uint8_t> packed = layout.IsFp32() ? std::vector<uint8_t>{} : RepackImage(image, layout);
   const ImageView traced = layout.IsFp32() ? image : ImageView(packed);
@@ -94,6 +100,7 @@ int Run(const RenderArgs& args) {
       {"accel", AccelKindName(p.accel)},
       {"isect", IsectMethodName(to.isect)},
       {"format", args.format},
+      {"trav_format", TravFormat(to).Name()},
       {"width", width},
       {"height", height},
       {p.structure ? "structure" : "tree",
@@ -142,7 +149,8 @@ int Run(const RenderArgs& args) {
 
   if (!args.quiet) {
     PrintTreeStats(p);
-    std::printf("format         %s, %s test (minimal format %s)\n", args.format.c_str(), IsectMethodName(to.isect),
+    std::printf("format         %s%s, %s test (minimal format %s)\n", args.format.c_str(),
+                mixed ? (" (traversal " + TravFormat(to).Name() + ")").c_str() : "", IsectMethodName(to.isect),
                 check.requirement.MinimalFormat().c_str());
     if (!p.structure) {
       std::printf("memory image   %zu bytes (%s", traced.size(), fp::Format{layout.e, layout.m}.Name().c_str());
@@ -191,6 +199,10 @@ Runner AddRenderCommand(CLI::App& app) {
   cmd->add_option("--format", args->format, "Number format of traversal and intersection: " + fp::PresetNames() +
                                                             ", eXmY, or fp64 (native double, the accuracy reference)")
       ->capture_default_str();
+  cmd->add_option("--trav-format", args->trav_format,
+                  "Number format of the traversal alone (clip, split distances, cell intervals, stack), at least "
+                  "--format's exponent and mantissa bits; default: --format. Splits and vertices stay stored in "
+                  "--format. Model only (the RTL core has one format)");
   cmd->add_option("--image-format", args->image_format,
                   "Memory image the tracer reads: native (splits and vertices stored in --format's width; "
                   "fp64 reads the fp32 image) or fp32 (every format rounds on load). The hits are the same")

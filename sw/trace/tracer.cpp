@@ -1,6 +1,7 @@
 #include "trace/tracer.h"
 
 #include <chrono>
+#include <type_traits>
 
 #include "common/error.h"
 #include "fp/ftz.h"
@@ -39,27 +40,66 @@ auto WithArith(const fp::Format& format, Fn&& fn) {
   return fn(fp::SoftArith(format));
 }
 
+bool SameFormat(const fp::Format& a, const fp::Format& b) { return a.e == b.e && a.m == b.m; }
+
+// Runs fn(traversal arith, test arith). With a separate traversal format
+// the test runs on the soft-float model (fp32 too: bit-identical to native,
+// and native fp32 needs FTZ where a native fp64 traversal needs IEEE).
+template <class Fn>
+auto WithTraceArith(const TraceOptions& options, Fn&& fn) {
+  const fp::Format trav = TravFormat(options);
+  if (SameFormat(trav, options.format)) {
+    return WithArith(options.format, [&](const auto& a) { return fn(a, a, std::false_type{}); });
+  }
+  CheckTravFormat(options);
+  const fp::SoftArith test(options.format);
+  if (trav.IsFp64()) {
+    fp::ScopedIeeeDefault ieee;
+    return fn(fp::NativeF64Arith{}, test, std::true_type{});
+  }
+  if (trav.IsFp32()) {
+    fp::ScopedFtzDaz ftz;
+    return fn(fp::NativeF32Arith{}, test, std::true_type{});
+  }
+  return fn(fp::SoftArith(trav), test, std::true_type{});
+}
+
 }  // namespace
+
+fp::Format TravFormat(const TraceOptions& options) { return options.trav_format.value_or(options.format); }
+
+void CheckTravFormat(const TraceOptions& options) {
+  const fp::Format trav = TravFormat(options);
+  if (SameFormat(trav, options.format)) return;
+  if (trav.e < options.format.e || trav.m < options.format.m || options.format.IsFp64()) {
+    throw InputError("traversal format " + trav.Name() + " does not hold every value of " + options.format.Name() +
+                     ": it needs at least the test format's exponent and mantissa bits (the traversal works on "
+                     "the test's ray, widened exactly)");
+  }
+}
 
 Hit TraceOne(const ImageView& image, const Ray& ray, const TraceOptions& options, RayCounters* counters,
              std::vector<uint32_t>* path) {
-  return WithArith(options.format, [&](const auto& a) {
-    return ToHit(a, TraceRay(a, image, ray, options.isect, options.query, counters, path, StackLimit(options)));
+  return WithTraceArith(options, [&](const auto& at, const auto& ai, auto mixed) {
+    return ToHit(ai, TraceRayIn<decltype(mixed)::value>(at, ai, image, ray, options.isect, options.query, counters,
+                                                          path, StackLimit(options)));
   });
 }
 
 std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays, const TraceOptions& options,
                            TraceStats* stats, std::vector<RayCounters>* per_ray) {
+  CheckTravFormat(options);  // here, not in the ray threads
   std::vector<Hit> hits(rays.size());
   std::vector<RayCounters> counters(rays.size());
   const auto start = std::chrono::steady_clock::now();
   RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {
-    WithArith(options.format, [&](const auto& a) {
+    WithTraceArith(options, [&](const auto& at, const auto& ai, auto mixed) {
       size_t begin, end;
       while (next_chunk(&begin, &end)) {
         for (size_t i = begin; i < end; ++i) {
-          hits[i] = ToHit(a, TraceRay(a, image, rays[i], options.isect, options.query, &counters[i], nullptr,
-                                      StackLimit(options)));
+          hits[i] = ToHit(ai, TraceRayIn<decltype(mixed)::value>(at, ai, image, rays[i], options.isect,
+                                                                 options.query, &counters[i], nullptr,
+                                                                 StackLimit(options)));
         }
       }
       return 0;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "common/ray.h"
@@ -19,6 +20,11 @@ const char* IsectMethodName(IsectMethod m);
 
 struct TraceOptions {
   fp::Format format{8, 23};
+  // The traversal's own format (clip, split distances, cell intervals and
+  // the stack), wider than `format` or equal; unset: `format`. The triangle
+  // test always runs in `format`. Model only: the RTL core has one datapath
+  // format (kdrt sim refuses a separate one).
+  std::optional<fp::Format> trav_format;
   IsectMethod isect = IsectMethod::kWatertight;
   Query query = Query::kClosest;  // kAny: shadow rays (common/ray.h)
   int threads = 0;  // 0: all hardware threads; results do not depend on it
@@ -27,6 +33,13 @@ struct TraceOptions {
   int stack_depth = 0;
   bool progress = false;  // a progress line on stderr for long runs
 };
+
+// The traversal format in effect.
+fp::Format TravFormat(const TraceOptions& options);
+// Throws InputError unless the traversal format holds every value of the
+// test's format (at least its exponent and mantissa bits), as the traversal
+// works on the test's ray widened exactly.
+void CheckTravFormat(const TraceOptions& options);
 
 struct TraceStats {
   RayCounters totals;

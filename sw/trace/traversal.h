@@ -19,9 +19,11 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "common/ray.h"
+#include "fp/format.h"
 #include "trace/frame.h"
 #include "trace/intersect.h"
 #include "trace/memory_image.h"
@@ -58,8 +60,17 @@ struct BoxClip {
   bool miss;
 };
 
+// The hot per-node helpers are forced inline: with the mixed-format
+// instantiations beside them, GCC's unit growth limit stopped inlining them
+// into the fp32 loop (7 % of its speed).
+#if defined(__GNUC__)
+#define KDRT_HOT_INLINE inline __attribute__((always_inline))
+#else
+#define KDRT_HOT_INLINE inline
+#endif
+
 template <class A>
-BoxClip<A> ClipToBox(const A& a, const RaySetup<A>& r, const float bounds_min[3], const float bounds_max[3]) {
+KDRT_HOT_INLINE BoxClip<A> ClipToBox(const A& a, const RaySetup<A>& r, const float bounds_min[3], const float bounds_max[3]) {
   using T = typename A::T;
   BoxClip<A> c{r.tmin, r.tmax, false};
   for (int i = 0; i < 3; ++i) {
@@ -90,7 +101,7 @@ struct TraversalStep {
 };
 
 template <class A>
-TraversalStep<A> StepInnerNode(const A& a, float split_fp32, typename A::T o, typename A::T d,
+KDRT_HOT_INLINE TraversalStep<A> StepInnerNode(const A& a, float split_fp32, typename A::T o, typename A::T d,
                                typename A::T inv_d, typename A::T t0, typename A::T t1) {
   TraversalStep<A> s;
   const typename A::T split = a.Load(split_fp32);
@@ -134,25 +145,97 @@ Hit ToHit(const A& a, const TraceResult<A>& r) {
   return h;
 }
 
+// The traversal may run in a wider format than the triangle test (a
+// separate traversal datapath, TraceOptions::trav_format). It then works on
+// the test's own ray, widened exactly (At must hold every value of Ai), so
+// its conservative cells are those of the ray the test sees and the slack
+// argument above holds in At's ulps; hit distances are compared with cell
+// ends after the same exact widening.
+// The triangle test decides as if each vertex were moved by about an ulp of
+// |vertex - origin| in the test's format (the rounding of vertex - origin
+// and of the shear), so a cell must also reach that far beyond where the
+// traversal's own arithmetic puts it. In one format the traversal's slack
+// covers it (kTraversalSlackUlps); a wider traversal rounds every interval
+// end outwards to the test's format and adds kTestSlackUlps encodings
+// (docs/precision.md, "A traversal wider than the test").
+inline constexpr uint32_t kTestSlackUlps = 1;
+
+// A test-format value in the traversal format (exact: At holds Ai).
+template <class At, class Ai>
+typename At::T Widen(const At& at, const Ai& ai, typename Ai::T x) {
+  return at.Load(ai.Store(x));
+}
+
+// The traversal's ray in a wider format: the test's rounded origin,
+// direction and interval widened to At, with At's own reciprocal direction.
+template <class At, class Ai>
+RaySetup<At> TraversalRay(const At& at, const Ai& ai, const RaySetup<Ai>& r) {
+  Ray widened;
+  for (int i = 0; i < 3; ++i) {
+    widened.o[i] = ai.Store(r.o[i]);
+    widened.d[i] = ai.Store(r.d[i]);
+  }
+  widened.tmin = ai.Store(r.tmin);
+  widened.tmax = ai.Store(r.tmax);
+  return SetupRay(at, widened);
+}
+
+// x moved outwards (up or down) by at least kTestSlackUlps encodings of the
+// test's format: rounded to it towards the outside (to nearest, then one
+// encoding further if that went inwards), then nudged. Positive values only
+// move, as the nudges do (a positive x below the format's smallest normal
+// rounds up to +0, as the format's own arithmetic flushes it). The result is
+// a value of the test's format: cell intervals and the stack need no more
+// bits than the test's format.
+template <class At, class Ai>
+typename At::T WidenForTest(const At& at, const Ai& ai, typename At::T x, bool up) {
+  typename Ai::T r = ai.Load(at.Store(x));
+  const typename At::T back = at.Load(ai.Store(r));
+  if (up && at.Lt(back, x)) r = ai.NudgeUp(r, 1);
+  if (!up && at.Lt(x, back)) r = ai.NudgeDown(r, 1);
+  return at.Load(ai.Store(up ? ai.NudgeUp(r, kTestSlackUlps) : ai.NudgeDown(r, kTestSlackUlps)));
+}
+
 // `path`, when given, receives the index of every node fetched, in order.
 // `stack_limit` below the tree's depth models the core's StackDepth: a push
 // onto that many entries ends the ray with the hit it has so far, as
 // rt_core does (its thread goes to DONE with the overflow bit, rt_thread_fsm),
-// and counts an overflow.
-template <class A>
-TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, IsectMethod isect, Query query,
-                        RayCounters* counters = nullptr, std::vector<uint32_t>* path = nullptr,
-                        int stack_limit = kMaxTraversalStack) {
-  using T = typename A::T;
+// and counts an overflow. `at` is the traversal's arithmetic, `ai` the
+// triangle test's: the same object unless Mixed (a separate traversal
+// format; a template parameter so that the one-format path pays nothing).
+template <bool Mixed, class At, class Ai>
+TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, const Ray& ray, IsectMethod isect,
+                           Query query, RayCounters* counters = nullptr, std::vector<uint32_t>* path = nullptr,
+                           int stack_limit = kMaxTraversalStack) {
+  using T = typename At::T;
   const FramedRay framed = ToFrame(ray, image.frame());
-  const RaySetup<A> r = SetupRay(a, framed.ray);
-  TraceResult<A> best;
+  const RaySetup<Ai> r = SetupRay(ai, framed.ray);
+  TraceResult<Ai> best;
   best.t_scale_log2 = framed.t_scale_log2;
   best.t = r.tmax;
-  best.u = best.v = a.Zero();
+  best.u = best.v = ai.Zero();
 
   const img::Header& h = image.header();
-  const BoxClip<A> clip = ClipToBox(a, r, h.bounds_min, h.bounds_max);
+  RaySetup<At> mixed_ray;  // Mixed: the traversal's own ray
+  const RaySetup<At>* trav_ray = nullptr;
+  BoxClip<At> clip;
+  if constexpr (Mixed) {
+    mixed_ray = TraversalRay(at, ai, r);
+    trav_ray = &mixed_ray;
+    float bmin[3], bmax[3];  // rounded like the splits (below)
+    for (int i = 0; i < 3; ++i) {
+      bmin[i] = ai.Store(ai.Load(h.bounds_min[i]));
+      bmax[i] = ai.Store(ai.Load(h.bounds_max[i]));
+    }
+    clip = ClipToBox(at, mixed_ray, bmin, bmax);
+    clip.t0 = WidenForTest(at, ai, clip.t0, false);
+    clip.t1 = WidenForTest(at, ai, clip.t1, true);
+    clip.miss = at.Lt(clip.t1, clip.t0);
+  } else {
+    trav_ray = &r;
+    clip = ClipToBox(at, r, h.bounds_min, h.bounds_max);
+  }
+  const RaySetup<At>& rt = *trav_ray;
   if (clip.miss) return best;
   T t0 = clip.t0, t1 = clip.t1;
 
@@ -170,8 +253,19 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
     if (counters) ++counters->nodes;
     if (path) path->push_back(node);
     if (!n.IsLeaf()) {
-      const TraversalStep<A> step =
-          StepInnerNode(a, n.Split(), r.o[n.Axis()], r.d[n.Axis()], r.inv_d[n.Axis()], t0, t1);
+      // A split is stored in (or rounded to) the test's format, as the
+      // vertices are: rounding both the same monotone way keeps every
+      // triangle on the side of the plane the builder put it.
+      float split = n.Split();
+      if constexpr (Mixed) split = ai.Store(ai.Load(split));
+      TraversalStep<At> step = StepInnerNode(at, split, rt.o[n.Axis()], rt.d[n.Axis()], rt.inv_d[n.Axis()], t0, t1);
+      if constexpr (Mixed) {
+        step.t_lo = WidenForTest(at, ai, step.t_lo, false);
+        step.t_hi = WidenForTest(at, ai, step.t_hi, true);
+        step.action = at.Lt(t1, step.t_lo) || at.Le(step.t_split, at.Zero()) ? TraversalAction::kFirst
+                      : at.Lt(step.t_hi, t0)                                 ? TraversalAction::kSecond
+                                                                             : TraversalAction::kPush;
+      }
       const uint32_t below = image.next(node);
       const uint32_t first = step.below_first ? below : n.AboveChild();
       const uint32_t second = step.below_first ? n.AboveChild() : below;
@@ -185,7 +279,7 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
           return best;
         }
         stack[sp++] = Entry{second, step.t_lo, t1};
-        if (InPlane(a, step.t_lo)) ++in_plane;
+        if (InPlane(at, step.t_lo)) ++in_plane;
         node = first;
         t1 = step.t_hi;
       }
@@ -194,15 +288,15 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
     if (counters) ++counters->leaves;
     const uint32_t count = n.Count();
     if (count > 0) {
-      const T leaf_tmax = best.t;
+      const typename Ai::T leaf_tmax = best.t;
       for (uint32_t k = 0; k < count; ++k) {
         const uint32_t id = lists[n.FirstEntry() + k];
         if (counters) ++counters->tri_tests;
-        const Candidate<A> c = isect == IsectMethod::kWatertight
-                                   ? IntersectWatertight(a, r, image.triangle(id), leaf_tmax)
-                                   : IntersectMoller(a, r, image.triangle(id), leaf_tmax);
+        const Candidate<Ai> c = isect == IsectMethod::kWatertight
+                                    ? IntersectWatertight(ai, r, image.triangle(id), leaf_tmax)
+                                    : IntersectMoller(ai, r, image.triangle(id), leaf_tmax);
         if (!c.hit) continue;
-        if (a.Lt(c.t, best.t) || (a.Eq(c.t, best.t) && id < best.prim)) {
+        if (ai.Lt(c.t, best.t) || (ai.Eq(c.t, best.t) && id < best.prim)) {
           best.t = c.t;
           best.u = c.u;
           best.v = c.v;
@@ -212,15 +306,29 @@ TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, Isec
     }
     const bool may_stop = best.prim != kNoPrim && in_plane == 0;
     if (best.prim != kNoPrim && query == Query::kAny) return best;
-    if (may_stop && a.Le(best.t, t1)) return best;
+    T best_t;
+    if constexpr (Mixed) {
+      best_t = Widen(at, ai, best.t);
+    } else {
+      best_t = best.t;
+    }
+    if (may_stop && at.Le(best_t, t1)) return best;
     if (sp == 0) return best;
     const Entry& e = stack[--sp];
-    if (may_stop && a.Lt(best.t, e.t0)) return best;
-    if (InPlane(a, e.t0)) --in_plane;
+    if (may_stop && at.Lt(best_t, e.t0)) return best;
+    if (InPlane(at, e.t0)) --in_plane;
     node = e.node;
     t0 = e.t0;
     t1 = e.t1;
   }
+}
+
+// Traversal and test in one format (the RTL core's datapath).
+template <class A>
+TraceResult<A> TraceRay(const A& a, const ImageView& image, const Ray& ray, IsectMethod isect, Query query,
+                        RayCounters* counters = nullptr, std::vector<uint32_t>* path = nullptr,
+                        int stack_limit = kMaxTraversalStack) {
+  return TraceRayIn<false>(a, a, image, ray, isect, query, counters, path, stack_limit);
 }
 
 }  // namespace kdrt

@@ -33,12 +33,45 @@ TEST(Extremes, SimMatchesRenderAndNoHolesWithoutAWarning) {
     for (const auto& [format, cell] : c["formats"].items()) {
       EXPECT_EQ(cell["sim_mismatch"].get<int>(), 0) << name << " " << format << ": kdrt sim differs from render";
       // Where the precision analysis says the format suffices, no ray leaks.
-      if (!cell.contains("warning")) {
+      if (cell["warning"].get<std::string>().empty()) {
         EXPECT_EQ(cell["holes"].get<int>(), 0) << name << " " << format;
       }
     }
     EXPECT_EQ(c["formats"]["fp32"]["holes"].get<int>(), 0) << name;
   }
+}
+
+// A traversal in fp32 beside a test in a narrower format (model only): its
+// slack covers the test's rounding, so no must-hit ray leaks where the
+// format suffices.
+TEST(Extremes, WiderTraversalLeavesNoHoleWithoutAWarning) {
+  const fs::path json = fs::temp_directory_path() / ("kdrt_extremes_trav_" + std::to_string(getpid()) + ".json");
+  const testing::RunResult r =
+      testing::RunKdrt("extremes --reduced --formats fp24,bf16,fp16 --trav-format fp32 -q --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream f(json);
+  const nlohmann::json j = nlohmann::json::parse(f);
+  fs::remove(json);
+  EXPECT_EQ(j["trav_format"], "fp32");
+  ASSERT_GE(j["cases"].size(), 20u);
+  int checked = 0;
+  for (const nlohmann::json& c : j["cases"]) {
+    for (const auto& [format, cell] : c["formats"].items()) {
+      if (!cell["warning"].get<std::string>().empty()) continue;
+      EXPECT_EQ(cell["holes"].get<int>(), 0) << c["case"] << " " << format << " traversed in fp32";
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 40);
+}
+
+TEST(Extremes, RefusesATraversalFormatNarrowerThanTheTest) {
+  const testing::RunResult r = testing::RunKdrt("extremes --reduced --formats fp32 --trav-format fp16 -q");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("does not hold every value of fp32"), std::string::npos) << r.output;
+  const testing::RunResult s = testing::RunKdrt("extremes --reduced --formats fp16 --trav-format fp32 --sim -q");
+  EXPECT_NE(s.exit_code, 0);
+  EXPECT_NE(s.output.find("model only"), std::string::npos) << s.output;
 }
 
 }  // namespace

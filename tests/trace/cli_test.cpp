@@ -241,6 +241,38 @@ TEST_F(Cli, Fp64RendersWithoutWarnings) {
   EXPECT_TRUE(j["warnings"].empty());
 }
 
+// A traversal in fp32 beside a test in bf16 or fp16 (model only): the cells
+// cull almost as fp32's do, so both formats test far fewer triangles than
+// when they traverse in themselves, fp16 within 2x of fp32; a traversal
+// format narrower than the test's is refused with nothing written.
+TEST_F(Cli, WiderTraversalCullsLikeFp32) {
+  auto tests_per_ray = [&](const std::string& options) {
+    const std::string json = Path("t.json");
+    const RunResult r = RunKdrt("render gen:balls:10000 --res 48x48 -o " + Path("t.png") + " --json " + json + " " +
+                                options);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_GT(j["hits"].get<int>(), 500) << options;
+    return std::make_pair(j["per_ray"]["tri_tests"].get<double>(), j["trav_format"].get<std::string>());
+  };
+  const double fp32 = tests_per_ray("--format fp32").first;
+  for (const char* f : {"bf16", "fp16"}) {
+    const auto alone = tests_per_ray(std::string("--format ") + f);
+    const auto wide = tests_per_ray(std::string("--format ") + f + " --trav-format fp32");
+    EXPECT_EQ(alone.second, f);
+    EXPECT_EQ(wide.second, "fp32");
+    EXPECT_LT(wide.first, alone.first) << f;
+    if (std::string(f) == "fp16") {
+      EXPECT_LT(wide.first, 2 * fp32);
+    }
+  }
+  const RunResult bad = RunKdrt("render gen:balls:800 --res 8x8 --format fp24 --trav-format bf16 -o " + Path("b.png"));
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("traversal format bf16 does not hold every value of fp24"), std::string::npos)
+      << bad.output;
+  EXPECT_FALSE(fs::exists(Path("b.png")));
+}
+
 // The sphere of `kdrt rays` beside a triangle 1e5 away: its vertices
 // collapse in fp16. render warns on stderr and in the JSON, --strict refuses
 // with nothing written, fp32 has no warning. Every 16th ray.
