@@ -16,6 +16,8 @@
 //   kz = 0; if |d[kz]| < |d[1]|: kz = 1; if |d[kz]| < |d[2]|: kz = 2
 //   kx = (kz + 1) mod 3; ky = (kx + 1) mod 3; if sign(d[kz]): swap(kx, ky)
 //   sx = d[kx] / d[kz]; sy = d[ky] / d[kz]; sz = 1 / d[kz]
+//   a shear that flushed to zero zeroes its d component (sign kept) and makes
+//   its inv_d an infinity of that sign, at the output
 // The two comparisons of the kz rule are made as three in parallel:
 // |d0| < |d1|, |d0| < |d2| and |d1| < |d2|; the second one the model makes is
 // the second or the third, chosen by the first, so the outcome is the same.
@@ -292,10 +294,35 @@ module rt_ray_setup #(
     .clk_i, .en_i(en), .d_i(in_tag_i), .q_o(out_tag_o)
   );
 
-  assign out_d_o = val_out[0 +: 3*W];
+  // A shear that flushed to zero while its direction component is not zero:
+  // the test traces a ray without that component, so the traversal must too.
+  // The component becomes a zero of its sign, its reciprocal an infinity of
+  // that sign (the model's SetupRay). Zero means a zero exponent field (DAZ).
+  logic [E-1:0] exp_dx, exp_dy;  // the exponent fields of d[kx] and d[ky]
+  always_comb begin
+    unique case (out_kx_o)
+      2'd0:    exp_dx = val_out[W*0 + M +: E];
+      2'd1:    exp_dx = val_out[W*1 + M +: E];
+      default: exp_dx = val_out[W*2 + M +: E];
+    endcase
+    unique case (out_ky_o)
+      2'd0:    exp_dy = val_out[W*0 + M +: E];
+      2'd1:    exp_dy = val_out[W*1 + M +: E];
+      default: exp_dy = val_out[W*2 + M +: E];
+    endcase
+  end
+  logic sx_flushed, sy_flushed;
+  assign sx_flushed = out_sx_o[M +: E] == '0 && exp_dx != '0;
+  assign sy_flushed = out_sy_o[M +: E] == '0 && exp_dy != '0;
+  for (genvar i = 0; i < 3; i++) begin : g_flush
+    logic zero_i, sign_i;
+    assign zero_i = (sx_flushed && out_kx_o == 2'(i)) || (sy_flushed && out_ky_o == 2'(i));
+    assign sign_i = val_out[W*i + W-1];
+    assign out_d_o[W*i +: W] = zero_i ? {sign_i, {(W-1){1'b0}}} : val_out[W*i +: W];
+    assign out_inv_o[W*i +: W] = zero_i ? {sign_i, {E{1'b1}}, {M{1'b0}}} : inv_out[W*i +: W];
+  end
   assign out_tmin_o = val_out[3*W +: W];
   assign out_tmax_o = val_out[4*W +: W];
-  assign out_inv_o = inv_out;
 
   /* verilator lint_on PINCONNECTEMPTY */
 

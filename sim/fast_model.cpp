@@ -397,6 +397,7 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   std::vector<std::vector<uint32_t>> paths(rays.size());
   TraceOptions to;
   to.format = cfg.Format();
+  to.trav_format = spec.trav_format;
   to.query = spec.query;
   // A path that ends on an inner node is a ray whose push met a full stack
   // (StackDepth below the tree's depth, --allow-overflow): its thread goes
@@ -452,7 +453,17 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
 
   const int threads = cfg[kThreads];
   const int m = cfg.Format().m;
-  const uint64_t lat_clip = static_cast<uint64_t>(m) + 8 + 11, lat_trav = 8, lat_isect = static_cast<uint64_t>(m) + 34;
+  uint64_t lat_clip = static_cast<uint64_t>(m) + 8 + 11, lat_trav = 8;
+  const uint64_t lat_isect = static_cast<uint64_t>(m) + 34;
+  if (spec.trav_format && spec.trav_format->Name() != cfg.Format().Name()) {
+    // Estimated, not an RTL's: the ray setup's reciprocal in the wider format
+    // (its divider, M + 4 cycles, runs beside the test's) and one more
+    // cycle in the clip and in the traversal unit for rounding the cell ends
+    // outwards to the core's format (an fp_from_f32 stage).
+    const int wm = std::max(m, spec.trav_format->m);
+    lat_clip = static_cast<uint64_t>(wm) + 8 + 11 + 1;
+    lat_trav = 8 + 1;
+  }
   const int node_beats = 2, list_beats = 2, tri_beats = layout.TriangleBeats();
   const int ways = cfg[kCacheWays];
   Cache node(cfg[kNodeCacheLines], ways, node_beats, cfg[kCacheMshrs], cfg[kCacheTargets], true);

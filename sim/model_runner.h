@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,9 +48,11 @@ ModelRun RunModel(const ModelLocation& location, const CoreConfig& config, const
 // The fast cycle model (sim/fast_model.h) on the same image and rays, with
 // `config`'s parameters and `run`'s memory: the same report as a model run
 // ("cycle_model": "fast", and a note of what it does not model); its hits are
-// the reference's.
+// the reference's. `trav_format` (a traversal wider than the core's format,
+// which no RTL has) makes it an estimate, said in the report's notes.
 ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, const std::vector<Ray>& rays,
-                 const RunOptions& run, Query query = Query::kClosest);
+                 const RunOptions& run, Query query = Query::kClosest,
+                 std::optional<fp::Format> trav_format = std::nullopt);
 
 // The memory image the RTL core of `format` reads: the fp32 image packed in
 // the format's width (docs/memory-image.md, "Packed formats"); fp32's is the

@@ -11,6 +11,7 @@
 
 #include <cinttypes>
 #include <cstdio>
+#include <optional>
 
 #include "common/error.h"
 #include "fp/format.h"
@@ -24,6 +25,7 @@
 #include "sim/sim_report.h"
 #include "tools/commands.h"
 #include "tools/scene_options.h"
+#include "trace/tracer.h"
 
 namespace kdrt::cli {
 namespace {
@@ -35,6 +37,7 @@ struct SimArgs {
   std::string hits;
   std::string json;
   std::string format = "fp32";
+  std::string trav_format;  // --model fast only: an estimate
   std::string rays;
   std::string camera;
   sim::RunOptions run;
@@ -67,6 +70,25 @@ int RunSim(SimArgs args) {
   if (format.IsFp64()) {
     throw InputError("--format fp64: no RTL model computes in fp64 (it is the software reference: kdrt render "
                      "--format fp64)");
+  }
+  std::optional<fp::Format> trav_format;
+  std::string trav_warning;
+  if (!args.trav_format.empty()) {
+    TraceOptions check;
+    check.format = format;
+    check.trav_format = fp::ParseFormat(args.trav_format);
+    CheckTravFormat(check);
+    if (check.trav_format->Name() != format.Name()) {
+      if (args.model != "fast") {
+        throw InputError("--trav-format " + args.trav_format + ": no RTL core traverses in a format other than its "
+                         "own; only --model fast estimates it");
+      }
+      trav_format = check.trav_format;
+      trav_warning = "--trav-format " + trav_format->Name() + ": an estimate, not an RTL's cycles: the fast model "
+                     "with the wider traversal's paths and estimated clip and traversal latencies (no RTL has a "
+                     "separate traversal format)";
+      std::fprintf(stderr, "kdrt: warning: %s\n", trav_warning.c_str());
+    }
   }
   const PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);
@@ -112,7 +134,7 @@ int RunSim(SimArgs args) {
   // the fast model's figures and its error beside it.
   const auto run_model = [&](const std::vector<Ray>& rays, const sim::RunOptions& run_options,
                              const std::string& trace_path, Query query) {
-    if (!rtl) return sim::RunFast(choice.config, core_image, rays, run_options, query);
+    if (!rtl) return sim::RunFast(choice.config, core_image, rays, run_options, query, trav_format);
     sim::ModelRun r = sim::RunModel(loc, choice.config, core_image, rays, run_options, trace_path, query);
     if (r.exit_code != 0) return r;
     r.report["cycle_model"] = "rtl";
@@ -144,6 +166,7 @@ int RunSim(SimArgs args) {
   report["precision"] = check.requirement.Json();
   report["warnings"] = check.warnings;
   for (const std::string& w : run_warnings) report["warnings"].push_back(w);
+  if (!trav_warning.empty()) report["warnings"].push_back(trav_warning);
 
   // Shading: each secondary pass is one more run of the same model (the
   // waveform and --trace-ray cover the primary pass only).
@@ -212,6 +235,9 @@ Runner AddSimCommand(CLI::App& app) {
   cmd->add_option("--json", args->json, "Machine-readable statistics");
   cmd->add_option("--format", args->format, "Number format of the core: " + fp::PresetNames() + " or eXmY")
       ->capture_default_str();
+  cmd->add_option("--trav-format", args->trav_format,
+                  "With --model fast only: estimate a traversal in this wider format beside the core's format "
+                  "(kdrt render --trav-format); no RTL has it");
   cmd->add_option("--rays", args->rays, "Trace this ray file (KDRTRAYS) instead of the camera");
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
   sim::AddRunOptions(*cmd, args->run);

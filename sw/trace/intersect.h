@@ -52,6 +52,21 @@ RaySetup<A> SetupRay(const A& a, const Ray& ray) {
   r.sx = a.Div(r.d[r.kx], r.d[r.kz]);
   r.sy = a.Div(r.d[r.ky], r.d[r.kz]);
   r.sz = a.Div(a.One(), r.d[r.kz]);
+  // A shear that flushes to zero makes the test trace a ray without that
+  // direction component, parallel to that axis' planes. The traversal must
+  // trace the same ray: with the component kept, its plane crossings move by
+  // up to t itself from where the test sees the ray, and the cells it visits
+  // no longer hold the triangle the test hits (fp16, a sphere of 102k
+  // triangles: a ray with |d_y / d_z| = 4e-5 fell through). So the component
+  // becomes a zero of its sign, and its reciprocal an infinity, for both.
+  if (a.IsZero(r.sx) && !a.IsZero(r.d[r.kx])) {
+    r.d[r.kx] = a.IsNeg(r.d[r.kx]) ? a.Neg(a.Zero()) : a.Zero();
+    r.inv_d[r.kx] = a.Div(a.One(), r.d[r.kx]);
+  }
+  if (a.IsZero(r.sy) && !a.IsZero(r.d[r.ky])) {
+    r.d[r.ky] = a.IsNeg(r.d[r.ky]) ? a.Neg(a.Zero()) : a.Zero();
+    r.inv_d[r.ky] = a.Div(a.One(), r.d[r.ky]);
+  }
   return r;
 }
 

@@ -81,7 +81,8 @@ std::string OutString(Format f, const Out& o) {
   return s;
 }
 
-// Direction components that make ties in |d|, signed zeros and specials.
+// Direction components that make ties in |d|, signed zeros and specials,
+// and small components whose shear flushes.
 std::vector<Ray> DirectedRays() {
   const float values[] = {0.0f, -0.0f, 1.0f, -1.0f, 2.0f, -2.0f, 0.5f, 1.0000001f, -0.99999994f,
                           NAN, INFINITY, -INFINITY, 1e-40f, -1e-40f, 1e30f, 3e-30f};
@@ -96,6 +97,20 @@ std::vector<Ray> DirectedRays() {
         r.tmax = z;
         rays.push_back(r);
       }
+    }
+  }
+  // Small components beside a unit one, 2^-1 .. 2^-150: in every format some
+  // of these shears flush to zero while the component itself does not, and
+  // the component must then become a signed zero (SetupRay).
+  for (int k = 1; k <= 150; ++k) {
+    for (int axis = 0; axis < 3; ++axis) {
+      Ray r;
+      r.o = {0.5f, -0.25f, 0.125f};
+      r.d = {0.75f, -0.75f, 0.75f};
+      r.d[axis] = k % 2 ? -1.5f : 1.5f;
+      r.d[(axis + 1) % 3] = std::ldexp(k % 3 ? 1.25f : -1.25f, -k);
+      r.d[(axis + 2) % 3] = std::ldexp(k % 5 ? -1.0f : 1.0f, -(k + 3) / 2);
+      rays.push_back(r);
     }
   }
   return rays;

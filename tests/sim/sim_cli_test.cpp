@@ -446,6 +446,36 @@ TEST_F(SimCli, BandwidthAboveThePortWarns) {
   EXPECT_TRUE(a["warnings"].empty());
 }
 
+// --trav-format on kdrt sim: only the fast model estimates it, says so on
+// stderr and in the JSON, and runs the wider traversal's paths: the same
+// hits as kdrt render --trav-format, fewer triangle tests than the format
+// traversing in itself. Every RTL run refuses it with nothing written.
+TEST_F(SimCli, WiderTraversalIsAFastModelEstimate) {
+  const std::string common = "gen:balls:2000 --res 24x24 --format fp16 -q";
+  const RunResult est = RunKdrt("sim " + common + " --model fast --trav-format fp32 -o " + Path("a.png") + " --hits " +
+                                Path("a.exr") + " --json " + Path("a.json"));
+  ASSERT_EQ(est.exit_code, 0) << est.output;
+  EXPECT_NE(est.output.find("kdrt: warning: --trav-format fp32: an estimate"), std::string::npos) << est.output;
+  ASSERT_EQ(RunKdrt("render " + common + " --trav-format fp32 -o " + Path("r.png") + " --hits " + Path("r.exr"))
+                .exit_code,
+            0);
+  ExpectSameHitBuffers(Path("a.exr"), Path("r.exr"));
+  ASSERT_EQ(RunKdrt("sim " + common + " --model fast -o " + Path("b.png") + " --json " + Path("b.json")).exit_code, 0);
+  const nlohmann::json a = ReadJson(Path("a.json")), b = ReadJson(Path("b.json"));
+  EXPECT_EQ(a["trav_format"], "fp32");
+  EXPECT_FALSE(b.contains("trav_format"));
+  ASSERT_EQ(a["warnings"].size(), 1u);
+  EXPECT_NE(a["warnings"][0].get<std::string>().find("an estimate"), std::string::npos);
+  EXPECT_TRUE(b["warnings"].empty());
+  EXPECT_LT(a["reference_per_ray"]["tri_tests"].get<double>(), b["reference_per_ray"]["tri_tests"].get<double>());
+  for (const char* model : {"rtl", "both"}) {
+    const RunResult rtl = RunKdrt("sim " + common + " --model " + model + " --trav-format fp32 -o " + Path("c.png"));
+    EXPECT_NE(rtl.exit_code, 0) << model;
+    EXPECT_NE(rtl.output.find("only --model fast estimates it"), std::string::npos) << rtl.output;
+    EXPECT_FALSE(fs::exists(Path("c.png")));
+  }
+}
+
 // The SystemC top ticks the same core and memory model: same hits, same cycles.
 TEST_F(SimCli, SystemCLoopGivesTheSameCyclesAndHits) {
   const std::string common = "gen:tetra:300 --res 12x12 --format bf16 -o " + Path("x.png");

@@ -102,6 +102,23 @@ TEST_F(Cli, RayFileHitBufferIsInInputOrder) {
   }
 }
 
+// The 102,400-triangle sphere of `kdrt rays --size 160`, rays at every vertex
+// and edge: in fp16 one ray (|d_y / d_z| = 4e-5) fell through, its shear
+// flushed to zero while the traversal kept the component (SetupRay now
+// zeroes it). fp16 suffices for the scene, so every ray must hit.
+TEST_F(Cli, FlushedShearLeavesNoHoleInAFineSphere) {
+  ASSERT_EQ(RunKdrt("rays --mesh sphere --size 160 --scene-out " + Path("s.nff") + " --rays-out " + Path("s.rays"))
+                .exit_code,
+            0);
+  const RunResult r = RunKdrt("render " + Path("s.nff") + " --rays " + Path("s.rays") + " --format fp16 -o " +
+                              Path("s.png") + " --json " + Path("s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(Path("s.json")));
+  EXPECT_EQ(j["rays"].get<int>(), 610560);
+  EXPECT_EQ(j["hits"], j["rays"]);
+  EXPECT_TRUE(j["warnings"].empty()) << j["warnings"];  // fp16 suffices (minimal e5m8)
+}
+
 TEST_F(Cli, FormatsRenderAndFp32EqualsDefault) {
   ASSERT_EQ(RunKdrt("render gen:balls:800 --res 32x32 -q --hits " + Path("d.exr")).exit_code, 0);
   ASSERT_EQ(RunKdrt("render gen:balls:800 --res 32x32 -q --format fp32 --hits " + Path("f.exr")).exit_code, 0);

@@ -270,6 +270,29 @@ TEST(Intersection, ClosedSphereIsWatertightInEveryPreset) {
   }
 }
 
+// A direction component whose shear d[k] / d[kz] flushes to zero (fp16:
+// below 2^-14 of d[kz]) but which is itself a normal number: the ray setup
+// makes it a zero of its sign with an infinite reciprocal, so the traversal
+// traces the ray the test sees. Larger components are kept.
+TEST(Intersection, FlushedShearZeroesItsComponent) {
+  const fp::SoftArith a(fp::Format{5, 10});
+  const fp::Format f = a.format();
+  Ray ray;
+  ray.o = {0.0f, 0.0f, 0.0f};
+  ray.d = {-std::ldexp(1.0f, -13), std::ldexp(1.0f, -10), 8.0f};  // shears -2^-16 (flushes), 2^-13 (kept)
+  const RaySetup<fp::SoftArith> r = SetupRay(a, ray);
+  EXPECT_EQ(r.kz, 2);
+  EXPECT_EQ(r.kx, 0);
+  EXPECT_TRUE(a.IsZero(r.sx));
+  EXPECT_FALSE(a.IsZero(r.sy));
+  EXPECT_EQ(r.d[0], f.Zero(true));
+  EXPECT_EQ(r.inv_d[0], f.Inf(true));
+  EXPECT_EQ(r.d[1], a.Load(std::ldexp(1.0f, -10)));
+  // fp32 keeps both: its shears do not flush.
+  const RaySetup<fp::SoftArith> r32 = SetupRay(fp::SoftArith(fp::Format{8, 23}), ray);
+  EXPECT_FALSE(fp::IsZero(fp::Format{8, 23}, r32.d[0]));
+}
+
 TEST(MemoryImage, RejectsCorruptImages) {
   Prepared p(GenerateScene("tetra", 500));
   auto corrupt = [&](auto mutate) {
