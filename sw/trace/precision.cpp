@@ -72,7 +72,7 @@ PrecisionRequirement AnalyzePrecision(const ImageView& image, const std::vector<
     o.threads = threads;
     const std::vector<Hit> hits = TraceRays(image, rays, o);
     precision::AddRayExponentCriteria(image, rays, hits, &req.criteria);
-    precision::AddRayMantissaCriteria(image, rays, hits, &req.criteria);
+    precision::AddRayMantissaCriteria(image, rays, hits, threads, &req.criteria);
     req.rays = rays.size();
     for (const Hit& h : hits) req.hit_tests += h.IsHit();
   }

@@ -20,9 +20,9 @@ inline constexpr int kMaxMantissaBits = 23;
 // vertex_collapse, degenerate_triangles, split_order.
 void AddMantissaCriteria(const ImageView& image, int threads, std::vector<PrecisionCriterion>* out);
 
-// hit_degenerate; `hits` are the rays' fp64 hits.
+// hit_degenerate; `hits` are the rays' fp64 hits; `threads` as ParallelFor's.
 void AddRayMantissaCriteria(const ImageView& image, const std::vector<Ray>& rays, const std::vector<Hit>& hits,
-                            std::vector<PrecisionCriterion>* out);
+                            int threads, std::vector<PrecisionCriterion>* out);
 
 // coordinate_overflow, triangle_underflow, triangle_overflow.
 void AddImageExponentCriteria(const ImageView& image, std::vector<PrecisionCriterion>* out);

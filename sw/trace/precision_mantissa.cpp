@@ -217,22 +217,25 @@ double RoundMantissaD(double x, int m) {
 // a mesh that has collapsed (holes on a closed mesh, seen with e6m5 on a
 // sphere seen from 100 radii).
 void AddRayMantissaCriteria(const ImageView& image, const std::vector<Ray>& rays, const std::vector<Hit>& hits,
-                            std::vector<PrecisionCriterion>* out) {
+                            int threads, std::vector<PrecisionCriterion>* out) {
   PrecisionCriterion c{"hit_degenerate", false, "hit tests",
                        "lose their area relative to the ray origin (vertex - origin)"};
-  for (size_t i = 0; i < rays.size(); ++i) {
-    if (!hits[i].IsHit()) continue;
+  std::vector<int> needs(rays.size(), -1);  // -1: a miss, or no area even in fp32 (nothing to lose)
+  ParallelFor(rays.size(), threads, [&](size_t i) {
+    if (!hits[i].IsHit()) return;
     const Ray ray = ToFrame(rays[i], image.frame()).ray;
     const img::TriangleRecord tri = image.triangle(hits[i].prim);
     const float* v[3] = {tri.v0, tri.v1, tri.v2};
-    const int needs = BitsKeepingArea([&](int m, double p[3][3]) {
+    needs[i] = BitsKeepingArea([&](int m, double p[3][3]) {
       for (int k = 0; k < 3; ++k) {
         for (int a = 0; a < 3; ++a) {
           p[k][a] = RoundMantissaD(double{RoundMantissa(v[k][a], m)} - double{RoundMantissa(ray.o[a], m)}, m);
         }
       }
     });
-    if (needs >= 0) c.Add(needs);  // -1: no area even in fp32, nothing to lose
+  });
+  for (int b : needs) {
+    if (b >= 0) c.Add(b);
   }
   out->push_back(std::move(c));
 }
