@@ -201,11 +201,18 @@ PrecisionCriterion SplitOrder(const ImageView& image) {
 
 // x rounded to m bits (nearest even, unbounded exponent range): RoundMantissa
 // for a double, such as the difference of two rounded values.
+// On the encoding, as RoundMantissa: exact for normal doubles, which these
+// are (differences of fp32 values are multiples of 2^-149); the frexp and
+// ldexp it replaces took a third of a large frame's analysis.
 double RoundMantissaD(double x, int m) {
-  if (x == 0 || !std::isfinite(x)) return x;
-  int e = 0;
-  const double f = std::frexp(x, &e);  // |f| in [0.5, 1)
-  return std::ldexp(std::nearbyint(std::ldexp(f, m + 1)), e - m - 1);
+  if (x == 0 || !std::isfinite(x) || m >= 52) return x;
+  uint64_t u;
+  std::memcpy(&u, &x, sizeof u);
+  const int shift = 52 - m;
+  u += (uint64_t{1} << (shift - 1)) - 1 + ((u >> shift) & 1u);
+  u &= ~((uint64_t{1} << shift) - 1);
+  std::memcpy(&x, &u, sizeof x);
+  return x;
 }
 
 }  // namespace
