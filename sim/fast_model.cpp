@@ -455,7 +455,7 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   const int m = cfg.Format().m;
   uint64_t lat_clip = static_cast<uint64_t>(m) + 8 + 11, lat_trav = 8;
   const uint64_t lat_isect = static_cast<uint64_t>(m) + 34;
-  if (spec.trav_format && spec.trav_format->Name() != cfg.Format().Name()) {
+  if (spec.trav_format && *spec.trav_format != cfg.Format()) {
     // Estimated, not an RTL's: the ray setup's reciprocal in the wider format
     // (its divider, M + 4 cycles, runs beside the test's) and one more
     // cycle in the clip and in the traversal unit for rounding the cell ends

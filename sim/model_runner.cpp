@@ -224,7 +224,7 @@ ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, co
   out.report["notes"] = {"fast cycle model (sim/fast_model.h): cycles and every performance event as the RTL "
                          "counts them (cycle-exact where tested: tests/sim/sim_cli_test.cpp); a stack overflow "
                          "ends the ray as in the RTL"};
-  if (trav_format && trav_format->Name() != config.Format().Name()) {
+  if (trav_format && *trav_format != config.Format()) {
     out.report["trav_format"] = trav_format->Name();
     out.report["notes"].push_back(
         "an estimate: traversal in " + trav_format->Name() + " beside a " + config.Format().Name() +

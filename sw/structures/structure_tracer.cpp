@@ -56,7 +56,7 @@ void CheckStructureTraceOptions(const TraceOptions& options) {
   if (options.isect != IsectMethod::kWatertight) {
     throw InputError("the software structures use the watertight test only (not --isect moller)");
   }
-  if (TravFormat(options).Name() != options.format.Name()) {
+  if (TravFormat(options) != options.format) {
     throw InputError("the software structures trace in one format (no --trav-format); it is the kd-tree's option");
   }
 }

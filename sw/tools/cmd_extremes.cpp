@@ -71,12 +71,7 @@ int Run(const ExtremesArgs& args) {
   if (!args.trav_format.empty()) {
     if (args.sim) throw InputError("--trav-format is model only: the RTL core (--sim) has one datapath format");
     trav = fp::ParseFormat(args.trav_format);
-    for (const fp::Format& f : formats) {
-      TraceOptions check;
-      check.format = f;
-      check.trav_format = trav;
-      CheckTravFormat(check);
-    }
+    for (const fp::Format& f : formats) CheckTravFormat(f, *trav);
   }
   std::vector<ExtremeCase> cases;
   for (ExtremeCase& c : MakeExtremeCases(args.reduced)) {
@@ -107,10 +102,10 @@ int Run(const ExtremesArgs& args) {
                           {"reference", reference.Name()}, {"minimal_format", req.MinimalFormat()}};
     if (!args.quiet) std::printf("%-34s %7zu %7s", c.name.c_str(), c.rays.size(), req.MinimalFormat().c_str());
     for (const fp::Format& f : formats) {
-      to.format = f;
-      to.trav_format = trav;
-      const std::vector<Hit> hits = TraceRays(image, c.rays, to);
-      to.trav_format.reset();
+      TraceOptions fo = to;
+      fo.format = f;
+      fo.trav_format = trav;
+      const std::vector<Hit> hits = TraceRays(image, c.rays, fo);
       Cell cell = Measure(c, hits, ref);
       cell.warning = req.Shortfall(f);
       if (args.sim) {
@@ -146,7 +141,9 @@ int Run(const ExtremesArgs& args) {
                 "W: the scene's precision requirement says the format cannot represent the case (the JSON has "
                 "the warning)\n",
                 reference.Name().c_str(), args.sim ? "; sim: RTL records that differ from render's" : "");
-    if (trav) std::printf("every format traversed in %s (--trav-format; the test in the format)\n", trav->Name().c_str());
+    if (trav) {
+      std::printf("every format traversed in %s (--trav-format; the test in the format)\n", trav->Name().c_str());
+    }
   }
   if (!args.json.empty()) {
     OutputSet outputs;

@@ -64,19 +64,17 @@ int Run(const RenderArgs& args) {
   TraceOptions to;
   to.format = format;
   if (!args.trav_format.empty()) to.trav_format = fp::ParseFormat(args.trav_format);
-  const bool mixed = TravFormat(to).Name() != format.Name();
+  const bool mixed = TravFormat(to) != format;
   CheckTravFormat(to);
   to.isect = ParseIsectMethod(args.isect);
   to.threads = args.threads;
   if (!IsKdTree(args.scene.accel)) CheckStructureTraceOptions(to);  // before the build
   PreparedScene p = PrepareScene(args.scene);
   const bool mailbox = p.structure && p.structure->uses_mailbox();
-  const ImageView image(p.image);  // the scene as given: what the precision check reads
+  const ImageView image(p.image);
   // The image the tracer reads: the format's own packed image (splits and
   // vertices rounded once, as a load from the fp32 image rounds them: the
   // hits are the same), or the fp32 image.
-  // A packed image holds splits and triangles in one format; a separate
-  // traversal format reads the fp32 image (its splits unrounded).
   const img::ImageLayout layout = args.image_format == "fp32" ? img::ImageLayout{} : LayoutFor(format);
   const std::vector<uint8_t> packed = layout.IsFp32() ? std::vector<uint8_t>{} : RepackImage(image, layout);
   const ImageView traced = layout.IsFp32() ? image : ImageView(packed);

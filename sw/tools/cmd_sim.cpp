@@ -74,16 +74,14 @@ int RunSim(SimArgs args) {
   std::optional<fp::Format> trav_format;
   std::string trav_warning;
   if (!args.trav_format.empty()) {
-    TraceOptions check;
-    check.format = format;
-    check.trav_format = fp::ParseFormat(args.trav_format);
-    CheckTravFormat(check);
-    if (check.trav_format->Name() != format.Name()) {
+    const fp::Format trav = fp::ParseFormat(args.trav_format);
+    CheckTravFormat(format, trav);
+    if (trav != format) {
       if (args.model != "fast") {
         throw InputError("--trav-format " + args.trav_format + ": no RTL core traverses in a format other than its "
                          "own; only --model fast estimates it");
       }
-      trav_format = check.trav_format;
+      trav_format = trav;
       trav_warning = "--trav-format " + trav_format->Name() + ": an estimate, not an RTL's cycles: the fast model "
                      "with the wider traversal's paths and estimated clip and traversal latencies (no RTL has a "
                      "separate traversal format)";

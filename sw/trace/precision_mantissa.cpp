@@ -15,16 +15,24 @@
 
 namespace kdrt {
 
+namespace {
+
+// Rounds a float's or a double's encoding at bit `shift`, ties to even; a
+// carry out of the fraction steps the exponent, as rounding up to a power of
+// two does. Exact for normal numbers.
+template <class U>
+U RoundEncoding(U u, int shift) {
+  u += (U{1} << (shift - 1)) - 1 + ((u >> shift) & 1u);
+  return u & ~((U{1} << shift) - 1);
+}
+
+}  // namespace
+
 float RoundMantissa(float x, int m) {
   if (m >= 23) return x;
-  uint32_t u = fp::BitsOf(x);
+  const uint32_t u = fp::BitsOf(x);
   if ((u & 0x7F800000u) == 0x7F800000u) return x;  // inf, NaN
-  // Round the magnitude's encoding at bit 23 - m, ties to even; a carry out
-  // of the fraction steps the exponent, as rounding up to a power of two does.
-  const int shift = 23 - m;
-  u += (1u << (shift - 1)) - 1 + ((u >> shift) & 1u);
-  u &= ~((1u << shift) - 1);
-  return fp::FloatOf(u);
+  return fp::FloatOf(RoundEncoding(u, 23 - m));
 }
 
 namespace {
@@ -200,17 +208,14 @@ PrecisionCriterion SplitOrder(const ImageView& image) {
 }
 
 // x rounded to m bits (nearest even, unbounded exponent range): RoundMantissa
-// for a double, such as the difference of two rounded values.
-// On the encoding, as RoundMantissa: exact for normal doubles, which these
-// are (differences of fp32 values are multiples of 2^-149); the frexp and
-// ldexp it replaces took a third of a large frame's analysis.
+// for a double, such as the difference of two rounded values, on the
+// encoding (exact: these doubles are normal, as differences of fp32 values
+// are multiples of 2^-149; frexp and ldexp took a third of the analysis).
 double RoundMantissaD(double x, int m) {
   if (x == 0 || !std::isfinite(x) || m >= 52) return x;
   uint64_t u;
   std::memcpy(&u, &x, sizeof u);
-  const int shift = 52 - m;
-  u += (uint64_t{1} << (shift - 1)) - 1 + ((u >> shift) & 1u);
-  u &= ~((uint64_t{1} << shift) - 1);
+  u = RoundEncoding(u, 52 - m);
   std::memcpy(&x, &u, sizeof x);
   return x;
 }

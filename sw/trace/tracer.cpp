@@ -40,15 +40,13 @@ auto WithArith(const fp::Format& format, Fn&& fn) {
   return fn(fp::SoftArith(format));
 }
 
-bool SameFormat(const fp::Format& a, const fp::Format& b) { return a.e == b.e && a.m == b.m; }
-
 // Runs fn(traversal arith, test arith). With a separate traversal format
 // the test runs on the soft-float model (fp32 too: bit-identical to native,
 // and native fp32 needs FTZ where a native fp64 traversal needs IEEE).
 template <class Fn>
 auto WithTraceArith(const TraceOptions& options, Fn&& fn) {
   const fp::Format trav = TravFormat(options);
-  if (SameFormat(trav, options.format)) {
+  if (trav == options.format) {
     return WithArith(options.format, [&](const auto& a) { return fn(a, a, std::false_type{}); });
   }
   CheckTravFormat(options);
@@ -68,15 +66,16 @@ auto WithTraceArith(const TraceOptions& options, Fn&& fn) {
 
 fp::Format TravFormat(const TraceOptions& options) { return options.trav_format.value_or(options.format); }
 
-void CheckTravFormat(const TraceOptions& options) {
-  const fp::Format trav = TravFormat(options);
-  if (SameFormat(trav, options.format)) return;
-  if (trav.e < options.format.e || trav.m < options.format.m || options.format.IsFp64()) {
-    throw InputError("traversal format " + trav.Name() + " does not hold every value of " + options.format.Name() +
+void CheckTravFormat(const fp::Format& format, const fp::Format& trav) {
+  if (trav == format) return;
+  if (trav.e < format.e || trav.m < format.m || format.IsFp64()) {
+    throw InputError("traversal format " + trav.Name() + " does not hold every value of " + format.Name() +
                      ": it needs at least the test format's exponent and mantissa bits (the traversal works on "
                      "the test's ray, widened exactly)");
   }
 }
+
+void CheckTravFormat(const TraceOptions& options) { CheckTravFormat(options.format, TravFormat(options)); }
 
 Hit TraceOne(const ImageView& image, const Ray& ray, const TraceOptions& options, RayCounters* counters,
              std::vector<uint32_t>* path) {

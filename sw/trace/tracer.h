@@ -39,6 +39,7 @@ fp::Format TravFormat(const TraceOptions& options);
 // Throws InputError unless the traversal format holds every value of the
 // test's format (at least its exponent and mantissa bits), as the traversal
 // works on the test's ray widened exactly.
+void CheckTravFormat(const fp::Format& format, const fp::Format& trav);
 void CheckTravFormat(const TraceOptions& options);
 
 struct TraceStats {

@@ -19,7 +19,6 @@
 #pragma once
 
 #include <cstdint>
-#include <type_traits>
 #include <vector>
 
 #include "common/ray.h"
@@ -70,7 +69,8 @@ struct BoxClip {
 #endif
 
 template <class A>
-KDRT_HOT_INLINE BoxClip<A> ClipToBox(const A& a, const RaySetup<A>& r, const float bounds_min[3], const float bounds_max[3]) {
+KDRT_HOT_INLINE BoxClip<A> ClipToBox(const A& a, const RaySetup<A>& r, const float bounds_min[3],
+                                     const float bounds_max[3]) {
   using T = typename A::T;
   BoxClip<A> c{r.tmin, r.tmax, false};
   for (int i = 0; i < 3; ++i) {
@@ -100,22 +100,26 @@ struct TraversalStep {
   TraversalAction action;  // kPush: push (second, t_lo, t1), go first with t1 = t_hi
 };
 
+// The step's action from its split distance and the (nudged) ends of its
+// two children against the cell's interval [t0, t1].
+template <class A>
+KDRT_HOT_INLINE TraversalAction DecideAction(const A& a, const TraversalStep<A>& s, typename A::T t0,
+                                             typename A::T t1) {
+  if (a.Lt(t1, s.t_lo) || a.Le(s.t_split, a.Zero())) return TraversalAction::kFirst;
+  if (a.Lt(s.t_hi, t0)) return TraversalAction::kSecond;
+  return TraversalAction::kPush;
+}
+
 template <class A>
 KDRT_HOT_INLINE TraversalStep<A> StepInnerNode(const A& a, float split_fp32, typename A::T o, typename A::T d,
-                               typename A::T inv_d, typename A::T t0, typename A::T t1) {
+                                               typename A::T inv_d, typename A::T t0, typename A::T t1) {
   TraversalStep<A> s;
   const typename A::T split = a.Load(split_fp32);
   s.t_split = a.Mul(a.Sub(split, o), inv_d);
   s.t_lo = a.NudgeDown(s.t_split, kTraversalSlackUlps);
   s.t_hi = a.NudgeUp(s.t_split, kTraversalSlackUlps);
   s.below_first = a.Lt(o, split) || (a.Eq(o, split) && a.Le(d, a.Zero()));
-  if (a.Lt(t1, s.t_lo) || a.Le(s.t_split, a.Zero())) {
-    s.action = TraversalAction::kFirst;
-  } else if (a.Lt(s.t_hi, t0)) {
-    s.action = TraversalAction::kSecond;
-  } else {
-    s.action = TraversalAction::kPush;
-  }
+  s.action = DecideAction(a, s, t0, t1);
   return s;
 }
 
@@ -190,10 +194,10 @@ RaySetup<At> TraversalRay(const At& at, const Ai& ai, const RaySetup<Ai>& r) {
 template <class At, class Ai>
 typename At::T WidenForTest(const At& at, const Ai& ai, typename At::T x, bool up) {
   typename Ai::T r = ai.Load(at.Store(x));
-  const typename At::T back = at.Load(ai.Store(r));
+  const typename At::T back = Widen(at, ai, r);
   if (up && at.Lt(back, x)) r = ai.NudgeUp(r, 1);
   if (!up && at.Lt(x, back)) r = ai.NudgeDown(r, 1);
-  return at.Load(ai.Store(up ? ai.NudgeUp(r, kTestSlackUlps) : ai.NudgeDown(r, kTestSlackUlps)));
+  return Widen(at, ai, up ? ai.NudgeUp(r, kTestSlackUlps) : ai.NudgeDown(r, kTestSlackUlps));
 }
 
 // `path`, when given, receives the index of every node fetched, in order.
@@ -262,9 +266,7 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
       if constexpr (Mixed) {
         step.t_lo = WidenForTest(at, ai, step.t_lo, false);
         step.t_hi = WidenForTest(at, ai, step.t_hi, true);
-        step.action = at.Lt(t1, step.t_lo) || at.Le(step.t_split, at.Zero()) ? TraversalAction::kFirst
-                      : at.Lt(step.t_hi, t0)                                 ? TraversalAction::kSecond
-                                                                             : TraversalAction::kPush;
+        step.action = DecideAction(at, step, t0, t1);
       }
       const uint32_t below = image.next(node);
       const uint32_t first = step.below_first ? below : n.AboveChild();
