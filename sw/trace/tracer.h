@@ -23,7 +23,8 @@ struct TraceOptions {
   // The traversal's own format (clip, split distances, cell intervals and
   // the stack), wider than `format` or equal; unset: `format`. The triangle
   // test always runs in `format`. Model only: the RTL core has one datapath
-  // format (kdrt sim refuses a separate one).
+  // format (kdrt sim's RTL models refuse a separate one; its fast model
+  // estimates it).
   std::optional<fp::Format> trav_format;
   IsectMethod isect = IsectMethod::kWatertight;
   Query query = Query::kClosest;  // kAny: shadow rays (common/ray.h)
