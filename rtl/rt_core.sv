@@ -25,6 +25,10 @@
 module rt_core #(
   parameter int unsigned E /*verilator public*/ = 8,
   parameter int unsigned M /*verilator public*/ = 23,
+  // The traversal's format (ray setup's 1 / d, box clip, traversal step): E, M
+  // or a wider one; intervals and stacks stay in (E, M) (docs/dataflow.md).
+  parameter int unsigned TravE /*verilator public*/ = E,
+  parameter int unsigned TravM /*verilator public*/ = M,
   parameter int unsigned Threads /*verilator public*/ = 32,
   parameter int unsigned StackDepth /*verilator public*/ = 32,
   parameter int unsigned NodeIdxWidth /*verilator public*/ = 24,
@@ -45,6 +49,7 @@ module rt_core #(
   // Lines per set of each cache (pseudo-LRU replacement): 1 = direct-mapped.
   parameter int unsigned CacheWays /*verilator public*/ = 4,
   localparam int unsigned W = E + M + 1,
+  localparam int unsigned TW = TravE + TravM + 1,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1
 ) (
   input  logic                  clk_i,
@@ -104,7 +109,8 @@ module rt_core #(
 
   // ------------------------------------------------------------ thread table
   logic [RayIdWidth-1:0]   ray_id_q [Threads];
-  logic [3*W-1:0]          o_q [Threads], d_q [Threads], inv_q [Threads];
+  logic [3*W-1:0]          o_q [Threads], d_q [Threads];
+  logic [3*TW-1:0]         inv_q [Threads];        // the traversal's format
   logic [3*W-1:0]          shear_q [Threads];  // sx, sy, sz
   logic [5:0]              axes_q [Threads];   // kz, ky, kx (2 bits each)
   logic [W-1:0]            tmin_q [Threads], t0_q [Threads], t1_q [Threads], leaf_tmax_q [Threads];
@@ -127,10 +133,11 @@ module rt_core #(
   logic           setup_valid, clip_in_ready, setup_fire;
   logic [ThW-1:0] setup_tag;
   logic signed [KW-1:0] setup_t_scale;
-  logic [3*W-1:0] setup_o, setup_d, setup_inv;
+  logic [3*W-1:0] setup_o, setup_d;
+  logic [3*TW-1:0] setup_inv;
   logic [W-1:0]   setup_tmin, setup_tmax, setup_sx, setup_sy, setup_sz;
   logic [1:0]     setup_kx, setup_ky, setup_kz;
-  rt_ray_setup #(.E(E), .M(M), .TagWidth(ThW)) u_setup (
+  rt_ray_setup #(.E(E), .M(M), .TagWidth(ThW), .TravE(TravE), .TravM(TravM)) u_setup (
     .clk_i, .rst_ni, .in_valid_i(ray_fire), .in_ready_o(setup_in_ready), .in_tag_i(alloc_idx), .in_ray_i(ray_i),
     .frame_origin_i, .frame_scale_i,
     .out_valid_o(setup_valid), .out_ready_i(clip_in_ready), .out_tag_o(setup_tag),
@@ -144,7 +151,7 @@ module rt_core #(
   logic           clip_valid, clip_miss;
   logic [ThW-1:0] clip_tag;
   logic [W-1:0]   clip_t0, clip_t1;
-  rt_clip_unit #(.E(E), .M(M), .TagWidth(ThW)) u_clip (
+  rt_clip_unit #(.E(E), .M(M), .TagWidth(ThW), .TravE(TravE), .TravM(TravM)) u_clip (
     .clk_i, .rst_ni, .bounds_min_i, .bounds_max_i,
     .in_valid_i(setup_valid), .in_ready_o(clip_in_ready), .in_tag_i(setup_tag), .in_o_i(setup_o),
     .in_inv_i(setup_inv), .in_tmin_i(setup_tmin), .in_tmax_i(setup_tmax),
@@ -212,11 +219,11 @@ module rt_core #(
   logic [W-1:0]            trav_ts_lo, trav_ts_hi, trav_t1;
   assign node_ready = node_is_leaf || trav_in_ready;
   assign node_fire = node_valid && node_ready;
-  rt_trav_unit #(.E(E), .M(M), .TagWidth(ThW), .NodeIdxWidth(NodeIdxWidth)) u_trav (
+  rt_trav_unit #(.E(E), .M(M), .TagWidth(ThW), .NodeIdxWidth(NodeIdxWidth), .TravE(TravE), .TravM(TravM)) u_trav (
     .clk_i, .rst_ni, .in_valid_i(node_valid && !node_is_leaf), .in_ready_o(trav_in_ready),
     .in_tag_i(node_tag), .in_split_i(node_split), .in_below_i(node_below),
     .in_above_i(NodeIdxWidth'(node_hi)), .in_o_i(o_q[node_tag][W*node_axis +: W]),
-    .in_d_i(d_q[node_tag][W*node_axis +: W]), .in_inv_i(inv_q[node_tag][W*node_axis +: W]),
+    .in_d_i(d_q[node_tag][W*node_axis +: W]), .in_inv_i(inv_q[node_tag][TW*node_axis +: TW]),
     .in_t0_i(t0_q[node_tag]), .in_t1_i(t1_q[node_tag]),
     .out_valid_o(trav_valid), .out_ready_i(1'b1), .out_tag_o(trav_tag), .out_action_o(trav_action),
     .out_first_o(trav_first), .out_second_o(trav_second), .out_ts_o(), .out_ts_lo_o(trav_ts_lo),

@@ -35,6 +35,11 @@
 // outputs after Latency = 4 + M + FpDivExtraLatency = M + 8 enabled cycles
 // (fp32 31, fp24 24, bf16 15, fp16 18): the mapping adds two stages to the
 // d path; the o path (sub 4, ldexp 1, load 1) is off the critical chain.
+// A traversal wider than the triangle test (TravE, TravM above E, M; the
+// model's TraversalRay, sw/trace/traversal.h): out_inv_o is 1 / d in
+// (TravE, TravM), of the loaded d widened exactly (fp_widen), and the
+// flushed-shear rule gives its infinity in that format. Latency is then
+// max(M + 8, 3 + TravM + FpDivExtraLatency) (fp16 or bf16 beside binary32: 30).
 // The frame inputs are sampled with the ray (part of its payload; the core
 // holds them constant). Flow control as rt_isect_unit: a global stall with
 // en = !out_valid_o || out_ready_i = in_ready_o.
@@ -44,7 +49,10 @@ module rt_ray_setup #(
   parameter int unsigned E = 8,
   parameter int unsigned M = 23,
   parameter int unsigned TagWidth = 8,
-  localparam int unsigned W = E + M + 1
+  parameter int unsigned TravE = E,  // the traversal's format (out_inv_o)
+  parameter int unsigned TravM = M,
+  localparam int unsigned W = E + M + 1,
+  localparam int unsigned TW = TravE + TravM + 1
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,
@@ -67,7 +75,7 @@ module rt_ray_setup #(
   output logic signed [kdrt_pkg::TScaleWidth-1:0] out_t_scale_o,
   output logic [3*W-1:0]      out_o_o,    // (E, M) format, x in [W-1:0], framed
   output logic [3*W-1:0]      out_d_o,
-  output logic [3*W-1:0]      out_inv_o,  // 1 / d
+  output logic [3*TW-1:0]     out_inv_o,  // 1 / d, in the traversal's format
   output logic [W-1:0]        out_tmin_o,
   output logic [W-1:0]        out_tmax_o,
   output logic [1:0]          out_kx_o,
@@ -92,12 +100,17 @@ module rt_ray_setup #(
   localparam int unsigned TLoad = TScale + 1;        // their loads
   localparam int unsigned TCmp  = TLoad + LConv;     // comparisons, 1 / d[i]
   localparam int unsigned TAxis = TCmp + LCmp;       // axis choice, the shear divisions
-  localparam int unsigned Latency = TAxis + LDiv;
+  localparam bit Mixed = TravE != E || TravM != M;
+  localparam int unsigned LDivT = TravM + kdrt_fp_pkg::FpDivExtraLatency;
+  localparam int unsigned LatencyI = TAxis + LDiv;   // the shears
+  localparam int unsigned LatencyT = TCmp + LDivT;   // the traversal's 1 / d
+  localparam int unsigned Latency = LatencyI > LatencyT ? LatencyI : LatencyT;
   localparam int unsigned TOScale = LAdd;            // o' = ldexp(o - origin, s)
   localparam int unsigned TOLoad = TOScale + 1;      // load(o')
   localparam int unsigned TODone = TOLoad + LConv;   // must not exceed Latency (M >= 0)
 
   localparam logic [W-1:0] One = {2'b00, {(E-1){1'b1}}, {M{1'b0}}};
+  localparam logic [TW-1:0] OneT = {2'b00, {(TravE-1){1'b1}}, {TravM{1'b0}}};
 
   logic en;
   assign en = !out_valid_o || out_ready_i;
@@ -204,12 +217,18 @@ module rt_ray_setup #(
   );
 
   // ------------------------------------------------ 1 / d, comparisons
-  logic [3*W-1:0] inv;
+  logic [3*TW-1:0] inv;
   logic [3*W-1:0] abs_d;
   for (genvar i = 0; i < 3; i++) begin : g_inv
-    fp_div #(.E(E), .M(M)) u_div (
-      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(One), .b_i(val[W*i +: W]),
-      .valid_o(), .res_o(inv[W*i +: W])
+    logic [TW-1:0] d_t;
+    if (Mixed) begin : g_widen
+      fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_widen (.a_i(val[W*i +: W]), .res_o(d_t));
+    end else begin : g_same
+      assign d_t = val[W*i +: W];
+    end
+    fp_div #(.E(TravE), .M(TravM)) u_div (
+      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(OneT), .b_i(d_t),
+      .valid_o(), .res_o(inv[TW*i +: TW])
     );
     assign abs_d[W*i +: W] = {1'b0, val[W*i +: W-1]};
   end
@@ -269,25 +288,30 @@ module rt_ray_setup #(
     endcase
   end
 
+  logic [3*W-1:0] shear;  // sx, sy, sz
   fp_div #(.E(E), .M(M)) u_sx (
     .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TAxis]), .a_i(d_kx), .b_i(d_kz),
-    .valid_o(), .res_o(out_sx_o)
+    .valid_o(), .res_o(shear[0 +: W])
   );
   fp_div #(.E(E), .M(M)) u_sy (
     .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TAxis]), .a_i(d_ky), .b_i(d_kz),
-    .valid_o(), .res_o(out_sy_o)
+    .valid_o(), .res_o(shear[W +: W])
   );
   fp_div #(.E(E), .M(M)) u_sz (
     .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TAxis]), .a_i(One), .b_i(d_kz),
-    .valid_o(), .res_o(out_sz_o)
+    .valid_o(), .res_o(shear[2*W +: W])
+  );
+  // With a wider traversal, the shears wait for its reciprocals.
+  rt_delay #(.Width(3 * W), .Depth(Latency - LatencyI)) u_d_shear (
+    .clk_i, .en_i(en), .d_i(shear), .q_o({out_sz_o, out_sy_o, out_sx_o})
   );
 
-  rt_delay #(.Width(5 * W + 6), .Depth(LDiv)) u_d_out (
+  rt_delay #(.Width(5 * W + 6), .Depth(LDiv + Latency - LatencyI)) u_d_out (
     .clk_i, .en_i(en), .d_i({val_axis, kx, ky, kz}), .q_o({val_out, out_kx_o, out_ky_o, out_kz_o})
   );
-  // inv_d is ready one stage (LCmp) before the rest.
-  logic [3*W-1:0] inv_out;
-  rt_delay #(.Width(3 * W), .Depth(LCmp)) u_d_inv (
+  // In one format inv_d is ready one stage (LCmp) before the rest.
+  logic [3*TW-1:0] inv_out;
+  rt_delay #(.Width(3 * TW), .Depth(Latency - LatencyT)) u_d_inv (
     .clk_i, .en_i(en), .d_i(inv), .q_o(inv_out)
   );
   rt_delay #(.Width(TagWidth), .Depth(Latency)) u_d_tag (
@@ -319,7 +343,7 @@ module rt_ray_setup #(
     assign zero_i = (sx_flushed && out_kx_o == 2'(i)) || (sy_flushed && out_ky_o == 2'(i));
     assign sign_i = val_out[W*i + W-1];
     assign out_d_o[W*i +: W] = zero_i ? {sign_i, {(W-1){1'b0}}} : val_out[W*i +: W];
-    assign out_inv_o[W*i +: W] = zero_i ? {sign_i, {E{1'b1}}, {M{1'b0}}} : inv_out[W*i +: W];
+    assign out_inv_o[TW*i +: TW] = zero_i ? {sign_i, {TravE{1'b1}}, {TravM{1'b0}}} : inv_out[TW*i +: TW];
   end
   assign out_tmin_o = val_out[3*W +: W];
   assign out_tmax_o = val_out[4*W +: W];
@@ -331,7 +355,7 @@ module rt_ray_setup #(
     .clk_i, .rst_ni, .valid_i(in_valid_i), .ready_i(in_ready_o),
     .payload_i({in_tag_i, raw, frame_origin_i, frame_scale_i})
   );
-  rt_stream_check #(.Width(TagWidth + KW + 14 * W + 6), .Name("rt_ray_setup out")) u_out_check (
+  rt_stream_check #(.Width(TagWidth + KW + 11 * W + 3 * TW + 6), .Name("rt_ray_setup out")) u_out_check (
     .clk_i, .rst_ni, .valid_i(out_valid_o), .ready_i(out_ready_i),
     .payload_i({out_tag_o, out_t_scale_o, out_o_o, out_d_o, out_inv_o, out_tmin_o, out_tmax_o, out_kx_o, out_ky_o, out_kz_o,
                 out_sx_o, out_sy_o, out_sz_o})

@@ -15,6 +15,13 @@ COMMON=("$RTL/kdrt_fp_pkg.sv" "$RTL/fp_round.sv")
 read -r -a PRESETS <<< "$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname "$0")/../cmake/presets.cmake")"
 # The fp_* units must also hold at the edges of the accepted range.
 FP_FORMATS=("${PRESETS[@]}" e4m3:4:3 e2m1:2:1 e2m23:2:23)
+# A traversal wider than the triangle test: units with a TravE parameter are
+# also linted, per preset, with every other preset at least as wide in both
+# fields as the traversal (fp24, bf16 and fp16 beside fp32, fp16 beside fp24).
+# The widening helpers (fp_widen, fp_round_out; defaults WE = 8, WM = 23,
+# at least every accepted format) are also linted with fp24's fields as the
+# wide format, for every format that fits in it.
+IFS=: read -r _ FP24_E FP24_M <<< "$(printf '%s\n' "${PRESETS[@]}" | grep '^fp24:')"
 
 fail=0
 count=0
@@ -32,6 +39,21 @@ lint() {  # lint <top> <label> <extra verilator args...>
     fail=1
   fi
   count=$((count + 1))
+}
+
+# lint_wider_traversal <top> <file> <name> <E> <M>: if the unit has a TravE
+# parameter, lints it in (E, M) with every other preset at least as wide in
+# both fields as its traversal format.
+lint_wider_traversal() {
+  local top="$1" file="$2" name="$3" e="$4" m="$5" trav tname te tm
+  grep -qE '^\s*parameter\s+int\s+unsigned\s+TravE\b' "$file" || return 0
+  for trav in "${PRESETS[@]}"; do
+    IFS=: read -r tname te tm <<< "$trav"
+    if [ "$te" -ge "$e" ] && [ "$tm" -ge "$m" ] && [ "$tname" != "$name" ]; then
+      lint "$top" "$name traversal $tname" "${srcs[@]}" -y "$RTL" "$file" -GE="$e" -GM="$m" \
+        -GTravE="$te" -GTravM="$tm"
+    fi
+  done
 }
 
 for file in "$RTL"/*.sv; do
@@ -54,9 +76,24 @@ for file in "$RTL"/*.sv; do
         lint "$top" "$name Stages=0" "${srcs[@]}" -y "$RTL" "$file" -GE="$e" -GM="$m" -GStages=0
       fi
       lint "$top" "$name" "${srcs[@]}" -y "$RTL" "$file" -GE="$e" -GM="$m"
+      case "$top" in
+        fp_widen|fp_round_out)
+          if [ -n "$FP24_E" ] && [ "$e" -le "$FP24_E" ] && [ "$m" -le "$FP24_M" ] && { [ "$e" -ne "$FP24_E" ] || [ "$m" -ne "$FP24_M" ]; }; then
+            lint "$top" "$name WE=$FP24_E WM=$FP24_M" "${srcs[@]}" -y "$RTL" "$file" -GE="$e" -GM="$m" \
+              -GWE="$FP24_E" -GWM="$FP24_M"
+          fi
+          ;;
+      esac
+      lint_wider_traversal "$top" "$file" "$name" "$e" "$m"
     done
   else
     lint "$top" "defaults" "${srcs[@]}" -y "$RTL" "$file"
+    # A unit with a traversal format (rt_core: its E and M carry
+    # /*verilator public*/) is linted with each wider traversal too.
+    for fmt in "${PRESETS[@]}"; do
+      IFS=: read -r name e m <<< "$fmt"
+      lint_wider_traversal "$top" "$file" "$name" "$e" "$m"
+    done
   fi
   # rt_cache's sets and pseudo-LRU exist only with Ways > 1 (the default is 1).
   if [ "$top" = rt_cache ]; then

@@ -9,15 +9,27 @@
 # (written beside it, then renamed), so concurrent readers never see half a
 # file. On failure: exit status 1, the end of the Yosys log on stderr, no
 # OUT_JSON.
-# Usage: scripts/synth-unit.sh UNIT E M OUT_JSON   (E M "- -": the unit's
-#        default parameters; YOSYS=path to use another yosys)
+# Usage: scripts/synth-unit.sh UNIT E M OUT_JSON [NAME=VALUE...]   (E M "- -":
+#        the unit's default parameters; NAME=VALUE: more parameters, e.g.
+#        TravE=8 TravM=23, listed in the JSON's "params"; YOSYS=path to use
+#        another yosys)
 set -euo pipefail
 
-if [ "$#" -ne 4 ]; then
-  echo "usage: $0 UNIT E M OUT_JSON   (E M: '- -' for the unit's defaults)" >&2
+if [ "$#" -lt 4 ]; then
+  echo "usage: $0 UNIT E M OUT_JSON [NAME=VALUE...]   (E M: '- -' for the unit's defaults)" >&2
   exit 2
 fi
 unit="$1" e="$2" m="$3" out="$4"
+shift 4
+extra_set="" extra_json=""
+for kv in "$@"; do
+  if ! [[ "$kv" =~ ^[A-Za-z][A-Za-z0-9]*=[0-9]+$ ]]; then
+    echo "$0: $kv: expected NAME=VALUE (a parameter and a number)" >&2
+    exit 2
+  fi
+  extra_set="$extra_set -set ${kv%%=*} ${kv#*=}"
+  extra_json="$extra_json${extra_json:+, }\"${kv%%=*}\": ${kv#*=}"
+done
 if { [ "$e" = - ] && [ "$m" != - ]; } || { [ "$e" != - ] && [ "$m" = - ]; }; then
   echo "$0: E and M must both be numbers or both be '-'" >&2
   exit 2
@@ -35,7 +47,8 @@ trap 'rm -rf "$WORK"' EXIT
 log="$WORK/yosys.log"
 
 chp=""
-if [ "$e" != - ]; then chp="chparam -set E $e -set M $m $unit"; fi
+if [ "$e" != - ]; then chp="chparam -set E $e -set M $m$extra_set $unit";
+elif [ -n "$extra_set" ]; then chp="chparam$extra_set $unit"; fi
 if ! "$YOSYS" -q -l "$log" -p "
     read_verilog -sv $RTL/kdrt_fp_pkg.sv $RTL/kdrt_pkg.sv $(ls $RTL/*.sv | grep -v _pkg.sv | tr '\n' ' ')
     $chp
@@ -63,6 +76,8 @@ json_e=null json_m=null
 if [ "$e" != - ]; then json_e="$e" json_m="$m"; fi
 mkdir -p "$(dirname "$out")"
 tmp="$(mktemp "$out.tmp.XXXXXX")"
-printf '{"unit": "%s", "E": %s, "M": %s, "cells": %s, "flip_flops": %s, "depth": %s}\n' \
-  "$unit" "$json_e" "$json_m" "$cells" "$ffs" "$depth" > "$tmp"
+params=""
+if [ -n "$extra_json" ]; then params=", \"params\": {$extra_json}"; fi
+printf '{"unit": "%s", "E": %s, "M": %s, "cells": %s, "flip_flops": %s, "depth": %s%s}\n' \
+  "$unit" "$json_e" "$json_m" "$cells" "$ffs" "$depth" "$params" > "$tmp"
 mv -f "$tmp" "$out"

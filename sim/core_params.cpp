@@ -80,8 +80,8 @@ std::vector<std::string> CoreConfig::VerilatorDefines() const {
 CoreConfig DefaultConfig(fp::Format format) {
   CoreConfig c;
   for (int i = 0; i < kParamCount; ++i) c.value[i] = kCoreParams[i].default_value;
-  c[kE] = format.e;
-  c[kM] = format.m;
+  c[kE] = c[kTravE] = format.e;
+  c[kM] = c[kTravM] = format.m;
   return c;
 }
 

@@ -62,7 +62,9 @@ struct CoreConfig {
   int operator[](Param p) const { return value[p]; }
   int& operator[](Param p) { return value[p]; }
   fp::Format Format() const { return fp::Format{value[kE], value[kM]}; }
-  // A file-name-safe identifier, e.g. e8m23-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4.
+  // The traversal's format: Format() or a wider one (rt_core TravE, TravM).
+  fp::Format TravFormat() const { return fp::Format{value[kTravE], value[kTravM]}; }
+  // A file-name-safe identifier, e.g. e8m23v8.23-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4.
   std::string Key() const;
   nlohmann::json Json() const;
   // Verilator's -G<Name>=<value> for every parameter.

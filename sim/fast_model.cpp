@@ -397,7 +397,7 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   std::vector<std::vector<uint32_t>> paths(rays.size());
   TraceOptions to;
   to.format = cfg.Format();
-  to.trav_format = spec.trav_format;
+  if (cfg.TravFormat() != cfg.Format()) to.trav_format = cfg.TravFormat();
   to.query = spec.query;
   // A path that ends on an inner node is a ray whose push met a full stack
   // (StackDepth below the tree's depth, --allow-overflow): its thread goes
@@ -453,17 +453,15 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
 
   const int threads = cfg[kThreads];
   const int m = cfg.Format().m;
-  uint64_t lat_clip = static_cast<uint64_t>(m) + 8 + 11, lat_trav = 8;
+  // Ray setup and clip (rt_ray_setup M + 8, rt_clip_unit 11) and the
+  // traversal step (8); a wider traversal (TravE, TravM) has its reciprocal
+  // divider (3 + TravM + 4) and one more stage in clip and traversal step
+  // (rounding the cell ends outwards into the core's format).
+  const bool mixed = cfg.TravFormat() != cfg.Format();
+  const int setup = std::max(m + 8, mixed ? cfg.TravFormat().m + 7 : 0);
+  const uint64_t lat_clip = static_cast<uint64_t>(setup) + 11 + (mixed ? 1 : 0);
+  const uint64_t lat_trav = 8 + (mixed ? 1 : 0);
   const uint64_t lat_isect = static_cast<uint64_t>(m) + 34;
-  if (spec.trav_format && *spec.trav_format != cfg.Format()) {
-    // Estimated, not an RTL's: the ray setup's reciprocal in the wider format
-    // (its divider, M + 4 cycles, runs beside the test's) and one more
-    // cycle in the clip and in the traversal unit for rounding the cell ends
-    // outwards to the core's format (an fp_from_f32 stage).
-    const int wm = std::max(m, spec.trav_format->m);
-    lat_clip = static_cast<uint64_t>(wm) + 8 + 11 + 1;
-    lat_trav = 8 + 1;
-  }
   const int node_beats = 2, list_beats = 2, tri_beats = layout.TriangleBeats();
   const int ways = cfg[kCacheWays];
   Cache node(cfg[kNodeCacheLines], ways, node_beats, cfg[kCacheMshrs], cfg[kCacheTargets], true);

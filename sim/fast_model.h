@@ -17,7 +17,6 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include "common/ray.h"
@@ -35,9 +34,6 @@ struct FastSpec {
   CoreConfig config;
   MemoryConfig memory;
   uint64_t timeout = 1000000;  // cycles without a hit record
-  // A traversal wider than the core's format (TraceOptions::trav_format): no
-  // RTL has it, so the run is an estimate (RunFastModel's latencies).
-  std::optional<fp::Format> trav_format;
 };
 
 // The reference's hits are in result.hits; throws SimFailure on a timeout.

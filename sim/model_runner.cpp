@@ -195,7 +195,7 @@ ModelRun RunModel(const ModelLocation& loc, const CoreConfig& config, const std:
 }
 
 ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, const std::vector<Ray>& rays,
-                 const RunOptions& run, Query query, std::optional<fp::Format> trav_format) {
+                 const RunOptions& run, Query query) {
   const ImageView view(image);
   FastSpec spec;
   spec.image = &view;
@@ -206,7 +206,6 @@ ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, co
   spec.memory.latency = run.mem_latency;
   spec.memory.bytes_per_cycle = run.mem_bw;
   spec.timeout = run.timeout;
-  spec.trav_format = trav_format;
   RayCounters totals;
   RunOutcome outcome = RunFastModel(spec, &totals);
   ReportInputs ri;
@@ -224,13 +223,6 @@ ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, co
   out.report["notes"] = {"fast cycle model (sim/fast_model.h): cycles and every performance event as the RTL "
                          "counts them (cycle-exact where tested: tests/sim/sim_cli_test.cpp); a stack overflow "
                          "ends the ray as in the RTL"};
-  if (trav_format && *trav_format != config.Format()) {
-    out.report["trav_format"] = trav_format->Name();
-    out.report["notes"].push_back(
-        "an estimate: traversal in " + trav_format->Name() + " beside a " + config.Format().Name() +
-        " test has no RTL; the paths are the reference's (kdrt render --trav-format), the clip and traversal "
-        "latencies estimated (ray setup's reciprocal in the wider format, one more cycle to round cell ends)");
-  }
   out.hits = std::move(outcome.result.hits);
   return out;
 }
@@ -242,10 +234,15 @@ std::vector<uint8_t> CoreImage(const std::vector<uint8_t>& fp32_image, fp::Forma
 }
 
 ModelRun Simulate(const std::vector<uint8_t>& fp32_image, const std::vector<Ray>& rays, fp::Format format,
-                  RunOptions run, Query query) {
+                  RunOptions run, Query query, std::optional<fp::Format> trav) {
   const std::vector<uint8_t> image = CoreImage(fp32_image, format);
   const SceneRequirements req = DeriveRequirements(ImageView(image));
-  const ConfigChoice choice = ChooseConfig(format, req, ConfigOverrides{}, run.mem_size, run.allow_overflow);
+  ConfigOverrides ov;
+  if (trav && *trav != format) {
+    ov.value[kTravE] = trav->e;
+    ov.value[kTravM] = trav->m;
+  }
+  const ConfigChoice choice = ChooseConfig(format, req, ov, run.mem_size, run.allow_overflow);
   const ModelLocation loc = LocateModel(choice);
   if (!loc.built) BuildModel(choice, loc);
   run.mem_size = choice.mem_size;

@@ -48,11 +48,9 @@ ModelRun RunModel(const ModelLocation& location, const CoreConfig& config, const
 // The fast cycle model (sim/fast_model.h) on the same image and rays, with
 // `config`'s parameters and `run`'s memory: the same report as a model run
 // ("cycle_model": "fast", and a note of what it does not model); its hits are
-// the reference's. `trav_format` (a traversal wider than the core's format,
-// which no RTL has) makes it an estimate, said in the report's notes.
+// the reference's.
 ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, const std::vector<Ray>& rays,
-                 const RunOptions& run, Query query = Query::kClosest,
-                 std::optional<fp::Format> trav_format = std::nullopt);
+                 const RunOptions& run, Query query = Query::kClosest);
 
 // The memory image the RTL core of `format` reads: the fp32 image packed in
 // the format's width (docs/memory-image.md, "Packed formats"); fp32's is the
@@ -61,8 +59,9 @@ std::vector<uint8_t> CoreImage(const std::vector<uint8_t>& fp32_image, fp::Forma
 
 // The whole way for a caller without options: what the image requires, the
 // model of `format` that covers it (built when missing), and its run on the
-// image of its format (CoreImage of the fp32 `image`).
+// image of its format (CoreImage of the fp32 `image`). `trav`: a core whose
+// traversal datapath is that wider format (rt_core TravE, TravM).
 ModelRun Simulate(const std::vector<uint8_t>& image, const std::vector<Ray>& rays, fp::Format format,
-                  RunOptions run, Query query = Query::kClosest);
+                  RunOptions run, Query query = Query::kClosest, std::optional<fp::Format> trav = std::nullopt);
 
 }  // namespace kdrt::sim

@@ -69,7 +69,9 @@ int Run(const ExtremesArgs& args) {
   const std::regex pick(args.cases.empty() ? ".*" : args.cases);
   std::optional<fp::Format> trav;
   if (!args.trav_format.empty()) {
-    if (args.sim) throw InputError("--trav-format is model only: the RTL core (--sim) has one datapath format");
+    if (args.sim && (trav->e > 8 || trav->m > 23)) {
+      throw InputError("--trav-format " + trav->Name() + " with --sim: the RTL traverses in at most fp32 (e8m23)");
+    }
     trav = fp::ParseFormat(args.trav_format);
     for (const fp::Format& f : formats) CheckTravFormat(f, *trav);
   }
@@ -110,7 +112,7 @@ int Run(const ExtremesArgs& args) {
       cell.warning = req.Shortfall(f);
       if (args.sim) {
         sim::RunOptions run;
-        const sim::ModelRun m = sim::Simulate(p.image, c.rays, f, run);
+        const sim::ModelRun m = sim::Simulate(p.image, c.rays, f, run, Query::kClosest, trav);
         if (m.exit_code != 0) {
           throw InputError("kdrt sim failed on case '" + c.name + "' in " + f.Name() + " (exit " +
                            std::to_string(m.exit_code) + ")");
@@ -165,7 +167,7 @@ Runner AddExtremesCommand(CLI::App& app) {
   cmd->add_option("--reference", args->reference, "The format the others are compared with")->capture_default_str();
   cmd->add_option("--trav-format", args->trav_format,
                   "Traverse in this format (at least every listed format's bits), test in each listed one; "
-                  "model only");
+                  "with --sim, the RTL core with that traversal datapath (at most fp32)");
   cmd->add_option("--cases", args->cases, "Only the cases whose name matches this regular expression");
   cmd->add_option("--json", args->json, "Machine-readable results");
   cmd->add_flag("--reduced", args->reduced, "The smaller set `make test` runs");

@@ -11,7 +11,6 @@
 
 #include <cinttypes>
 #include <cstdio>
-#include <optional>
 
 #include "common/error.h"
 #include "fp/format.h"
@@ -37,7 +36,7 @@ struct SimArgs {
   std::string hits;
   std::string json;
   std::string format = "fp32";
-  std::string trav_format;  // --model fast only: an estimate
+  std::string trav_format;  // empty: --format
   std::string rays;
   std::string camera;
   sim::RunOptions run;
@@ -71,21 +70,18 @@ int RunSim(SimArgs args) {
     throw InputError("--format fp64: no RTL model computes in fp64 (it is the software reference: kdrt render "
                      "--format fp64)");
   }
-  std::optional<fp::Format> trav_format;
-  std::string trav_warning;
   if (!args.trav_format.empty()) {
+    // A core with a wider traversal datapath (rt_core TravE, TravM): its own
+    // model, sized for the scene like any non-default parameter.
     const fp::Format trav = fp::ParseFormat(args.trav_format);
     CheckTravFormat(format, trav);
+    if (trav.e > 8 || trav.m > 23) {
+      throw InputError("--trav-format " + args.trav_format + ": the RTL traverses in at most fp32 (e8m23); "
+                       "kdrt render --trav-format takes wider ones");
+    }
     if (trav != format) {
-      if (args.model != "fast") {
-        throw InputError("--trav-format " + args.trav_format + ": no RTL core traverses in a format other than its "
-                         "own; only --model fast estimates it");
-      }
-      trav_format = trav;
-      trav_warning = "--trav-format " + trav_format->Name() + ": an estimate, not an RTL's cycles: the fast model "
-                     "with the wider traversal's paths and estimated clip and traversal latencies (no RTL has a "
-                     "separate traversal format)";
-      std::fprintf(stderr, "kdrt: warning: %s\n", trav_warning.c_str());
+      args.overrides.value[sim::kTravE] = trav.e;
+      args.overrides.value[sim::kTravM] = trav.m;
     }
   }
   const PreparedScene p = PrepareScene(args.scene);
@@ -132,7 +128,7 @@ int RunSim(SimArgs args) {
   // the fast model's figures and its error beside it.
   const auto run_model = [&](const std::vector<Ray>& rays, const sim::RunOptions& run_options,
                              const std::string& trace_path, Query query) {
-    if (!rtl) return sim::RunFast(choice.config, core_image, rays, run_options, query, trav_format);
+    if (!rtl) return sim::RunFast(choice.config, core_image, rays, run_options, query);
     sim::ModelRun r = sim::RunModel(loc, choice.config, core_image, rays, run_options, trace_path, query);
     if (r.exit_code != 0) return r;
     r.report["cycle_model"] = "rtl";
@@ -164,7 +160,6 @@ int RunSim(SimArgs args) {
   report["precision"] = check.requirement.Json();
   report["warnings"] = check.warnings;
   for (const std::string& w : run_warnings) report["warnings"].push_back(w);
-  if (!trav_warning.empty()) report["warnings"].push_back(trav_warning);
 
   // Shading: each secondary pass is one more run of the same model (the
   // waveform and --trace-ray cover the primary pass only).
@@ -234,8 +229,9 @@ Runner AddSimCommand(CLI::App& app) {
   cmd->add_option("--format", args->format, "Number format of the core: " + fp::PresetNames() + " or eXmY")
       ->capture_default_str();
   cmd->add_option("--trav-format", args->trav_format,
-                  "With --model fast only: estimate a traversal in this wider format beside the core's format "
-                  "(kdrt render --trav-format); no RTL has it");
+                  "Number format of the core's traversal datapath (ray setup's 1/d, box clip, split distances), "
+                  "at least --format's bits and at most fp32; cell intervals and stacks stay in --format "
+                  "(kdrt render --trav-format)");
   cmd->add_option("--rays", args->rays, "Trace this ray file (KDRTRAYS) instead of the camera");
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
   sim::AddRunOptions(*cmd, args->run);

@@ -170,18 +170,22 @@ typename At::T Widen(const At& at, const Ai& ai, typename Ai::T x) {
   return at.Load(ai.Store(x));
 }
 
-// The traversal's ray in a wider format: the test's rounded origin,
-// direction and interval widened to At, with At's own reciprocal direction.
+// The traversal's ray in a wider format: the test's origin, direction
+// (after its flushed-shear rule) and interval widened to At, with At's own
+// reciprocal direction (rtl/rt_ray_setup.sv's out_inv_o). Only those: the
+// traversal traces exactly the test's ray, so no rule of At's own setup
+// (axes, shears) applies.
 template <class At, class Ai>
 RaySetup<At> TraversalRay(const At& at, const Ai& ai, const RaySetup<Ai>& r) {
-  Ray widened;
+  RaySetup<At> t{};
   for (int i = 0; i < 3; ++i) {
-    widened.o[i] = ai.Store(r.o[i]);
-    widened.d[i] = ai.Store(r.d[i]);
+    t.o[i] = Widen(at, ai, r.o[i]);
+    t.d[i] = Widen(at, ai, r.d[i]);
+    t.inv_d[i] = at.Div(at.One(), t.d[i]);
   }
-  widened.tmin = ai.Store(r.tmin);
-  widened.tmax = ai.Store(r.tmax);
-  return SetupRay(at, widened);
+  t.tmin = Widen(at, ai, r.tmin);
+  t.tmax = Widen(at, ai, r.tmax);
+  return t;
 }
 
 // x moved outwards (up or down) by at least kTestSlackUlps encodings of the
@@ -198,6 +202,41 @@ typename At::T WidenForTest(const At& at, const Ai& ai, typename At::T x, bool u
   if (up && at.Lt(back, x)) r = ai.NudgeUp(r, 1);
   if (!up && at.Lt(x, back)) r = ai.NudgeDown(r, 1);
   return Widen(at, ai, up ? ai.NudgeUp(r, kTestSlackUlps) : ai.NudgeDown(r, kTestSlackUlps));
+}
+
+// The box clip of a traversal wider than the test (rtl/rt_clip_unit.sv with
+// TravE, TravM): the box rounded to the test's format like the splits, the
+// clip in At, its ends moved outwards into the test's format.
+template <class At, class Ai>
+BoxClip<At> ClipToBoxMixed(const At& at, const Ai& ai, const RaySetup<At>& r, const float bounds_min[3],
+                           const float bounds_max[3]) {
+  float bmin[3], bmax[3];
+  for (int i = 0; i < 3; ++i) {
+    bmin[i] = ai.Store(ai.Load(bounds_min[i]));
+    bmax[i] = ai.Store(ai.Load(bounds_max[i]));
+  }
+  BoxClip<At> c = ClipToBox(at, r, bmin, bmax);
+  c.t0 = WidenForTest(at, ai, c.t0, false);
+  c.t1 = WidenForTest(at, ai, c.t1, true);
+  c.miss = at.Lt(c.t1, c.t0);
+  return c;
+}
+
+// The traversal step of a traversal wider than the test (rtl/rt_trav_unit.sv
+// with TravE, TravM): o, d, t0 and t1 are test-format values (widened), inv_d
+// is At's; the split is rounded to the test's format (as the vertices are:
+// rounding both the same monotone way keeps every triangle on the side of the
+// plane the builder put it), the step runs in At, and the children's ends are
+// moved outwards into the test's format.
+template <class At, class Ai>
+KDRT_HOT_INLINE TraversalStep<At> StepInnerNodeMixed(const At& at, const Ai& ai, float split_fp32,
+                                                     typename At::T o, typename At::T d, typename At::T inv_d,
+                                                     typename At::T t0, typename At::T t1) {
+  TraversalStep<At> s = StepInnerNode(at, ai.Store(ai.Load(split_fp32)), o, d, inv_d, t0, t1);
+  s.t_lo = WidenForTest(at, ai, s.t_lo, false);
+  s.t_hi = WidenForTest(at, ai, s.t_hi, true);
+  s.action = DecideAction(at, s, t0, t1);
+  return s;
 }
 
 // `path`, when given, receives the index of every node fetched, in order.
@@ -226,15 +265,7 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
   if constexpr (Mixed) {
     mixed_ray = TraversalRay(at, ai, r);
     trav_ray = &mixed_ray;
-    float bmin[3], bmax[3];  // rounded like the splits (below)
-    for (int i = 0; i < 3; ++i) {
-      bmin[i] = ai.Store(ai.Load(h.bounds_min[i]));
-      bmax[i] = ai.Store(ai.Load(h.bounds_max[i]));
-    }
-    clip = ClipToBox(at, mixed_ray, bmin, bmax);
-    clip.t0 = WidenForTest(at, ai, clip.t0, false);
-    clip.t1 = WidenForTest(at, ai, clip.t1, true);
-    clip.miss = at.Lt(clip.t1, clip.t0);
+    clip = ClipToBoxMixed(at, ai, mixed_ray, h.bounds_min, h.bounds_max);
   } else {
     trav_ray = &r;
     clip = ClipToBox(at, r, h.bounds_min, h.bounds_max);
@@ -257,16 +288,12 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
     if (counters) ++counters->nodes;
     if (path) path->push_back(node);
     if (!n.IsLeaf()) {
-      // A split is stored in (or rounded to) the test's format, as the
-      // vertices are: rounding both the same monotone way keeps every
-      // triangle on the side of the plane the builder put it.
-      float split = n.Split();
-      if constexpr (Mixed) split = ai.Store(ai.Load(split));
-      TraversalStep<At> step = StepInnerNode(at, split, rt.o[n.Axis()], rt.d[n.Axis()], rt.inv_d[n.Axis()], t0, t1);
+      const int axis = n.Axis();
+      TraversalStep<At> step;
       if constexpr (Mixed) {
-        step.t_lo = WidenForTest(at, ai, step.t_lo, false);
-        step.t_hi = WidenForTest(at, ai, step.t_hi, true);
-        step.action = DecideAction(at, step, t0, t1);
+        step = StepInnerNodeMixed(at, ai, n.Split(), rt.o[axis], rt.d[axis], rt.inv_d[axis], t0, t1);
+      } else {
+        step = StepInnerNode(at, n.Split(), rt.o[axis], rt.d[axis], rt.inv_d[axis], t0, t1);
       }
       const uint32_t below = image.next(node);
       const uint32_t first = step.below_first ? below : n.AboveChild();

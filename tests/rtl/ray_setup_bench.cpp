@@ -9,6 +9,12 @@
 // set of ties, signed zeros and special values, in four frames; then random
 // rays (1e6 per preset, 1e7 with KDRT_LONG=1), with direction components
 // of any magnitude (subnormal to fp32's largest, mixed within one ray).
+// With a traversal wider than the test (TravE, TravM; the configurations
+// name:E:M:TE:TM in tests/rtl/CMakeLists.txt) out_inv_o is the model's
+// TraversalRay's inv_d (1 / d in the traversal format, of the test's d
+// widened, after the flushed-shear rule); every other output is SetupRay's
+// in the test format, as before.
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -17,13 +23,17 @@
 #include <vector>
 
 #include "Vrt_ray_setup_bf16.h"
+#include "Vrt_ray_setup_bf16t32.h"
 #include "Vrt_ray_setup_fp16.h"
+#include "Vrt_ray_setup_fp16t24.h"
+#include "Vrt_ray_setup_fp16t32.h"
 #include "Vrt_ray_setup_fp24.h"
 #include "Vrt_ray_setup_fp32.h"
 #include "tests/rtl/isect_bench_util.h"
 #include "tests/rtl/stream_bench.h"
 #include "trace/frame.h"
 #include "trace/intersect.h"
+#include "trace/traversal.h"
 
 namespace kdrt::rtlbench {
 namespace {
@@ -33,8 +43,13 @@ using fp::SoftArith;
 
 constexpr uint32_t kTagMask = 0xFF;
 
-// docs/isect-unit.md: frame 2, load 1, compare 1, divide M + 4.
-unsigned DocumentedLatency(Format f) { return 8 + static_cast<unsigned>(f.m); }
+// docs/isect-unit.md: frame 2, load 1, compare 1, divide M + 4. A wider
+// traversal's reciprocals (frame 2, load 1, divide TravM + 4) may take
+// longer (rtl/rt_ray_setup.sv).
+unsigned DocumentedLatency(Format f, Format trav) {
+  const unsigned test = 8 + static_cast<unsigned>(f.m);
+  return f == trav ? test : std::max(test, 3 + static_cast<unsigned>(trav.m) + 4);
+}
 
 constexpr int kScaleWidth = 9;    // kdrt_pkg::FrameScaleWidth
 constexpr int kTScaleWidth = 10;  // kdrt_pkg::TScaleWidth
@@ -50,15 +65,37 @@ struct Out {
   }
 };
 
-Out Model(const SoftArith& a, const Ray& world, const Frame& frame) {
+// How often the mixed runs reach the traversal's cases.
+struct Coverage {
+  uint64_t inv_inf = 0;    // a zero d (loaded as one or flushed by the shear rule)
+  uint64_t flushed = 0;    // the flushed-shear rule zeroed a component
+  uint64_t inv_nan = 0;
+  uint64_t wider = 0;      // inv_d not a value of the test format (the wide division mattered)
+};
+
+// `at` is the traversal's arithmetic (the same format as `a` unless the
+// traversal is wider): then inv_d is TraversalRay's.
+Out Model(const SoftArith& a, const SoftArith& at, const Ray& world, const Frame& frame, Coverage* cov) {
   const FramedRay framed = ToFrame(world, frame);
   const RaySetup<SoftArith> r = SetupRay(a, framed.ray);
+  const bool mixed = a.format() != at.format();
   Out o;
   o.t_scale = framed.t_scale_log2;
   for (int i = 0; i < 3; ++i) {
     o.v[i] = r.o[i];
     o.v[3 + i] = r.d[i];
     o.v[6 + i] = r.inv_d[i];
+  }
+  if (mixed) {
+    const Format ft = at.format(), fi = a.format();
+    const RaySetup<SoftArith> t = TraversalRay(at, a, r);
+    for (int i = 0; i < 3; ++i) {
+      o.v[6 + i] = t.inv_d[i];
+      cov->inv_inf += fp::IsInf(ft, t.inv_d[i]);
+      cov->inv_nan += fp::IsNaN(ft, t.inv_d[i]);
+      cov->flushed += fp::IsZero(fi, r.d[i]) && !fp::IsZero(fi, a.Load(framed.ray.d[i]));
+      cov->wider += Widen(at, a, a.Load(at.Store(t.inv_d[i]))) != t.inv_d[i];
+    }
   }
   o.v[9] = r.tmin;
   o.v[10] = r.tmax;
@@ -71,11 +108,13 @@ Out Model(const SoftArith& a, const Ray& world, const Frame& frame) {
   return o;
 }
 
-std::string OutString(Format f, const Out& o) {
+std::string OutString(Format f, Format trav, const Out& o) {
   static const char* kNames[14] = {"o.x", "o.y", "o.z", "d.x", "d.y",  "d.z", "inv.x",
                                    "inv.y", "inv.z", "tmin", "tmax", "sx", "sy",  "sz"};
   std::string s;
-  for (int i = 0; i < 14; ++i) s += std::string(i % 3 == 0 ? "\n    " : "  ") + kNames[i] + " " + Fmt(f, o.v[i]);
+  for (int i = 0; i < 14; ++i) {
+    s += std::string(i % 3 == 0 ? "\n    " : "  ") + kNames[i] + " " + Fmt(i >= 6 && i < 9 ? trav : f, o.v[i]);
+  }
   s += "\n    kx " + std::to_string(o.kx) + " ky " + std::to_string(o.ky) + " kz " + std::to_string(o.kz);
   s += "  k " + std::to_string(o.t_scale);
   return s;
@@ -177,10 +216,13 @@ struct In {
 };
 
 template <class Dut>
-bool RunPreset(Format f, uint64_t random_count) {
+bool RunPreset(Format f, Format trav, uint64_t random_count) {
   const auto start = std::chrono::steady_clock::now();
-  const SoftArith a(f);
-  const int w = f.Width();
+  const SoftArith a(f), at(trav);
+  const bool mixed = f != trav;
+  const std::string name = f.Name() + (mixed ? " (traversal " + trav.Name() + ")" : "");
+  const int w = f.Width(), tw = trav.Width();
+  Coverage cov;
   SimCtrl<Dut> sim;
   sim.top().in_valid_i = 0;
   sim.top().out_ready_i = 1;
@@ -188,7 +230,7 @@ bool RunPreset(Format f, uint64_t random_count) {
   Rng rng(500 + f.m);
 
   StreamUnit<Dut, In, Out> unit;
-  unit.name = "rt_ray_setup " + f.Name();
+  unit.name = "rt_ray_setup " + name;
   unit.drive = [](Dut& dut, const In& in) {
     const Ray& r = in.ray;
     const float words[8] = {r.o[0], r.o[1], r.o[2], r.d[0], r.d[1], r.d[2], r.tmin, r.tmax};
@@ -197,12 +239,12 @@ bool RunPreset(Format f, uint64_t random_count) {
     dut.frame_scale_i = static_cast<uint32_t>(in.frame.scale_log2) & ((1u << kScaleWidth) - 1);
     dut.in_tag_i = in.tag;
   };
-  unit.read = [w](const Dut& dut) {
+  unit.read = [w, tw](const Dut& dut) {
     Out o;
     for (int i = 0; i < 3; ++i) {
       o.v[i] = static_cast<uint32_t>(GetBits(dut.out_o_o, i * w, w));
       o.v[3 + i] = static_cast<uint32_t>(GetBits(dut.out_d_o, i * w, w));
-      o.v[6 + i] = static_cast<uint32_t>(GetBits(dut.out_inv_o, i * w, w));
+      o.v[6 + i] = static_cast<uint32_t>(GetBits(dut.out_inv_o, i * tw, tw));
     }
     o.v[9] = dut.out_tmin_o;
     o.v[10] = dut.out_tmax_o;
@@ -218,25 +260,26 @@ bool RunPreset(Format f, uint64_t random_count) {
     return o;
   };
   unit.model = [&](const In& in) {
-    Out o = Model(a, in.ray, in.frame);
+    Out o = Model(a, at, in.ray, in.frame, &cov);
     o.tag = in.tag;
     return o;
   };
   unit.report = [&](const In& in, const Out& want, const Out& got, uint64_t index) {
     std::printf("FAIL rt_ray_setup %s: first mismatch at ray %llu\n  %s\n  frame origin (%s, %s, %s) scale 2^%d\n"
                 "  model (tag %u):%s\n  rtl (tag %u):%s\n",
-                f.Name().c_str(), static_cast<unsigned long long>(index), RayString(in.ray).c_str(),
+                name.c_str(), static_cast<unsigned long long>(index), RayString(in.ray).c_str(),
                 F32(in.frame.origin[0]).c_str(), F32(in.frame.origin[1]).c_str(), F32(in.frame.origin[2]).c_str(),
-                in.frame.scale_log2, want.tag, OutString(f, want).c_str(), got.tag, OutString(f, got).c_str());
+                in.frame.scale_log2, want.tag, OutString(f, trav, want).c_str(), got.tag,
+                OutString(f, trav, got).c_str());
   };
 
   // Latency on an idle pipe.
   const unsigned latency = MeasureLatency(sim, unit, In{Ray{{0, 0, 0}, {1, 2, 3}, 0.0f, 1.0f}, Frame{}, 0});
-  std::printf("rt_ray_setup %s: latency %u cycles (documented %u)\n", f.Name().c_str(), latency,
-              DocumentedLatency(f));
-  if (latency != DocumentedLatency(f)) {
-    std::printf("FAIL rt_ray_setup %s: latency %u, documented %u\n", f.Name().c_str(), latency,
-                DocumentedLatency(f));
+  std::printf("rt_ray_setup %s: latency %u cycles (documented %u)\n", name.c_str(), latency,
+              DocumentedLatency(f, trav));
+  if (latency != DocumentedLatency(f, trav)) {
+    std::printf("FAIL rt_ray_setup %s: latency %u, documented %u\n", name.c_str(), latency,
+                DocumentedLatency(f, trav));
     return false;
   }
 
@@ -268,10 +311,21 @@ bool RunPreset(Format f, uint64_t random_count) {
   StreamStats stats;
   if (!RunStream(sim, rng, traffic, unit, &stats)) return false;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("PASS rt_ray_setup %s: %llu rays (%zu directed), %llu cycles, %.1f s\n", f.Name().c_str(),
+  std::printf("PASS rt_ray_setup %s: %llu rays (%zu directed), %llu cycles, %.1f s\n", name.c_str(),
               static_cast<unsigned long long>(stats.results), directed.size(),
               static_cast<unsigned long long>(stats.cycles), seconds);
+  if (mixed) {
+    std::printf("  covered (components): inv_d infinite %llu, NaN %llu, of a flushed shear %llu, "
+                "not a %s value %llu\n",
+                static_cast<unsigned long long>(cov.inv_inf), static_cast<unsigned long long>(cov.inv_nan),
+                static_cast<unsigned long long>(cov.flushed), f.Name().c_str(),
+                static_cast<unsigned long long>(cov.wider));
+  }
   std::fflush(stdout);
+  if (mixed && (cov.inv_inf == 0 || cov.inv_nan == 0 || cov.flushed == 0 || cov.wider == 0)) {
+    std::printf("FAIL rt_ray_setup %s: a required case was not reached\n", name.c_str());
+    return false;
+  }
   return stats.results == total;
 }
 
@@ -286,10 +340,14 @@ int main(int argc, char** argv) {
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) == "--count") count = std::strtoull(argv[i + 1], nullptr, 10);
   }
-  bool ok = RunPreset<Vrt_ray_setup_fp32>(kFp32, count);
-  ok = RunPreset<Vrt_ray_setup_fp24>(kFp24, count) && ok;
-  ok = RunPreset<Vrt_ray_setup_bf16>(kBf16, count) && ok;
-  ok = RunPreset<Vrt_ray_setup_fp16>(kFp16, count) && ok;
+  bool ok = RunPreset<Vrt_ray_setup_fp32>(kFp32, kFp32, count);
+  ok = RunPreset<Vrt_ray_setup_fp24>(kFp24, kFp24, count) && ok;
+  ok = RunPreset<Vrt_ray_setup_bf16>(kBf16, kBf16, count) && ok;
+  ok = RunPreset<Vrt_ray_setup_fp16>(kFp16, kFp16, count) && ok;
+  // A traversal wider than the test (tests/rtl/CMakeLists.txt, KDRT_TRAV_MIXED_FORMATS).
+  ok = RunPreset<Vrt_ray_setup_fp16t32>(kFp16, kFp32, count) && ok;
+  ok = RunPreset<Vrt_ray_setup_bf16t32>(kBf16, kFp32, count) && ok;
+  ok = RunPreset<Vrt_ray_setup_fp16t24>(kFp16, kFp24, count) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

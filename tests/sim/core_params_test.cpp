@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cctype>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -26,27 +28,33 @@ std::string ReadText(const std::string& path) {
 TEST(CoreParams, TableDefaultsAreTheRtlDefaults) {
   const std::string sv = ReadText(std::string(KDRT_SOURCE_DIR) + "/rtl/rt_core.sv");
   ASSERT_FALSE(sv.empty());
+  // A default may name an earlier parameter (the traversal's format is E, M).
+  std::map<std::string, int> defaults;
   for (const CoreParam& p : kCoreParams) {
     const std::regex decl("parameter int unsigned " + std::string(p.sv_name) +
-                          R"( /\*verilator public\*/ = (\d+))");
+                          R"( /\*verilator public\*/ = (\d+|[A-Za-z]+))");
     std::smatch m;
     ASSERT_TRUE(std::regex_search(sv, m, decl)) << p.sv_name << " is not a public parameter of rt_core";
-    EXPECT_EQ(std::stoi(m[1]), p.default_value) << p.sv_name;
+    const std::string value = m[1];
+    const int v = std::isdigit(static_cast<unsigned char>(value[0])) ? std::stoi(value) : defaults.at(value);
+    EXPECT_EQ(v, p.default_value) << p.sv_name;
+    defaults[p.sv_name] = v;
   }
 }
 
 TEST(CoreParams, KeyNamesEveryParameter) {
   CoreConfig c = DefaultConfig(fp::kFp32);
-  EXPECT_EQ(c.Key(), "e8m23-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4");
+  EXPECT_EQ(c.Key(), "e8m23v8.23-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4");
+  EXPECT_EQ(DefaultConfig(fp::kFp16).Key(), "e5m10v5.10-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4");
   c[kTriCacheLines] = 128;
-  EXPECT_EQ(c.Key(), "e8m23-t32-s32-n24-i24-a28-c64.64.128-r16-g8-w4");
+  EXPECT_EQ(c.Key(), "e8m23v8.23-t32-s32-n24-i24-a28-c64.64.128-r16-g8-w4");
   EXPECT_EQ(c.Json()["TriCacheLines"], 128);
   EXPECT_EQ(c.VerilatorDefines()[kTriCacheLines], "-GTriCacheLines=128");
   c[kCacheTargets] = 1;
-  EXPECT_EQ(c.Key(), "e8m23-t32-s32-n24-i24-a28-c64.64.128-r16-g1-w4");
+  EXPECT_EQ(c.Key(), "e8m23v8.23-t32-s32-n24-i24-a28-c64.64.128-r16-g1-w4");
   EXPECT_EQ(c.VerilatorDefines()[kCacheTargets], "-GCacheTargets=1");
   c[kCacheWays] = 2;
-  EXPECT_EQ(c.Key(), "e8m23-t32-s32-n24-i24-a28-c64.64.128-r16-g1-w2");
+  EXPECT_EQ(c.Key(), "e8m23v8.23-t32-s32-n24-i24-a28-c64.64.128-r16-g1-w2");
   EXPECT_EQ(c.VerilatorDefines().back(), "-GCacheWays=2");
 }
 

@@ -446,33 +446,37 @@ TEST_F(SimCli, BandwidthAboveThePortWarns) {
   EXPECT_TRUE(a["warnings"].empty());
 }
 
-// --trav-format on kdrt sim: only the fast model estimates it, says so on
-// stderr and in the JSON, and runs the wider traversal's paths: the same
-// hits as kdrt render --trav-format, fewer triangle tests than the format
-// traversing in itself. Every RTL run refuses it with nothing written.
-TEST_F(SimCli, WiderTraversalIsAFastModelEstimate) {
+// --trav-format on kdrt sim: a core whose ray setup, clip and traversal unit
+// compute in fp32 beside an fp16 test (rt_core TravE, TravM), its own model.
+// Its hit records are kdrt render --trav-format's bit for bit (the harness
+// checks every ray), it tests fewer triangles than fp16 traversing in
+// itself, the fast model follows it cycle for cycle, and no warning is given
+// (it is not an estimate). A traversal narrower than the test, or wider than
+// fp32, is refused with nothing written.
+TEST_F(SimCli, WiderTraversalRunsInTheRtl) {
   const std::string common = "gen:balls:2000 --res 24x24 --format fp16 -q";
-  const RunResult est = RunKdrt("sim " + common + " --model fast --trav-format fp32 -o " + Path("a.png") + " --hits " +
+  const RunResult sim = RunKdrt("sim " + common + " --model both --trav-format fp32 -o " + Path("a.png") + " --hits " +
                                 Path("a.exr") + " --json " + Path("a.json"));
-  ASSERT_EQ(est.exit_code, 0) << est.output;
-  EXPECT_NE(est.output.find("kdrt: warning: --trav-format fp32: an estimate"), std::string::npos) << est.output;
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
   ASSERT_EQ(RunKdrt("render " + common + " --trav-format fp32 -o " + Path("r.png") + " --hits " + Path("r.exr"))
                 .exit_code,
             0);
   ExpectSameHitBuffers(Path("a.exr"), Path("r.exr"));
-  ASSERT_EQ(RunKdrt("sim " + common + " --model fast -o " + Path("b.png") + " --json " + Path("b.json")).exit_code, 0);
+  ASSERT_EQ(RunKdrt("sim " + common + " -o " + Path("b.png") + " --json " + Path("b.json")).exit_code, 0);
   const nlohmann::json a = ReadJson(Path("a.json")), b = ReadJson(Path("b.json"));
-  EXPECT_EQ(a["trav_format"], "fp32");
-  EXPECT_FALSE(b.contains("trav_format"));
-  ASSERT_EQ(a["warnings"].size(), 1u);
-  EXPECT_NE(a["warnings"][0].get<std::string>().find("an estimate"), std::string::npos);
-  EXPECT_TRUE(b["warnings"].empty());
+  EXPECT_EQ(a["model"]["TravE"], 8);
+  EXPECT_EQ(a["model"]["TravM"], 23);
+  EXPECT_EQ(a["model"]["E"], 5);
+  EXPECT_EQ(b["model"]["TravE"], 5);
+  EXPECT_EQ(b["model"]["TravM"], 10);
+  EXPECT_TRUE(a["warnings"].empty()) << a["warnings"];
+  EXPECT_EQ(a["cycle_model"], "rtl");
+  EXPECT_EQ(a["fast"]["error"].get<double>(), 0.0);
   EXPECT_LT(a["reference_per_ray"]["tri_tests"].get<double>(), b["reference_per_ray"]["tri_tests"].get<double>());
-  for (const char* model : {"rtl", "both"}) {
-    const RunResult rtl = RunKdrt("sim " + common + " --model " + model + " --trav-format fp32 -o " + Path("c.png"));
-    EXPECT_NE(rtl.exit_code, 0) << model;
-    EXPECT_NE(rtl.output.find("only --model fast estimates it"), std::string::npos) << rtl.output;
-    EXPECT_FALSE(fs::exists(Path("c.png")));
+  for (const std::string& bad : {std::string("--trav-format bf16"), std::string("--trav-format fp64")}) {
+    const RunResult r = RunKdrt("sim " + common + " " + bad + " -o " + Path("c.png"));
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_FALSE(fs::exists(Path("c.png"))) << bad;
   }
 }
 
