@@ -29,7 +29,7 @@ module fp_round_out #(
 );
 
   logic [31:0]    a_f32;
-  logic [E+M:0]   nearest, stepped;
+  logic [E+M:0]   nearest;
   logic [WE+WM:0] a_q, back;
   fp_to_f32 #(.E(WE), .M(WM)) u_hub (.a_i, .f32_o(a_f32));
   fp_from_f32 #(.E(E), .M(M)) u_round (
@@ -52,11 +52,14 @@ module fp_round_out #(
   );
   assign inwards = Up ? back_lt_a : a_lt_back;
 
-  logic [E+M:0] one_up, one_down, k_up, k_down;
-  fp_nudge #(.E(E), .M(M), .K(1)) u_step (.a_i(nearest), .up_o(one_up), .down_o(one_down));
-  assign stepped = !inwards ? nearest : (Up ? one_up : one_down);
-  fp_nudge #(.E(E), .M(M), .K(K)) u_slack (.a_i(stepped), .up_o(k_up), .down_o(k_down));
-  assign res_o = Up ? k_up : k_down;
+  // nudge(nudge(r, 1), K) == nudge(r, K + 1) under fp_nudge's rules (both
+  // saturate at +inf and give +0 below the normal range), so both candidates
+  // come from the rounded value in parallel with the comparison, and the
+  // comparison only selects: one nudge on the path after the register.
+  logic [E+M:0] k_up, k_down, k1_up, k1_down;
+  fp_nudge #(.E(E), .M(M), .K(K)) u_slack (.a_i(nearest), .up_o(k_up), .down_o(k_down));
+  fp_nudge #(.E(E), .M(M), .K(K + 1)) u_slack_step (.a_i(nearest), .up_o(k1_up), .down_o(k1_down));
+  assign res_o = Up ? (inwards ? k1_up : k_up) : (inwards ? k1_down : k_down);
 
 endmodule
 
