@@ -9,10 +9,11 @@ namespace {
 
 bool IsPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
-// The option's first long name, for messages ("--threads,--core-threads" -> "--threads").
+// The option's first long name, for messages ("--threads,--core-threads" -> "--threads"),
+// or what the parameter is when no option sets it alone (E, M, TravE, TravM).
 std::string FlagName(const CoreParam& p) {
   const std::string flag = p.flag;
-  return flag.substr(0, flag.find(','));
+  return flag.empty() ? std::string(p.what) : flag.substr(0, flag.find(','));
 }
 
 void CheckOverride(const CoreParam& p, int value) {
@@ -109,6 +110,14 @@ SceneRequirements DeriveRequirements(const ImageView& image) {
   r.list_bytes = uint64_t{h.list_count} * img::kListEntryBytes;
   r.tri_bytes = uint64_t{h.tri_count} * image.layout().TriangleBytes();
   return r;
+}
+
+void CheckRtlTravFormat(const fp::Format& trav) {
+  if (trav.e > kCoreParams[kTravE].max || trav.m > kCoreParams[kTravM].max) {
+    throw InputError("--trav-format " + trav.Name() + ": the RTL traverses in at most e" +
+                     std::to_string(kCoreParams[kTravE].max) + "m" + std::to_string(kCoreParams[kTravM].max) +
+                     " (fp32); kdrt render --trav-format takes wider ones");
+  }
 }
 
 void CheckConfigCovers(const CoreConfig& c, const SceneRequirements& req, uint64_t mem_size, bool allow_overflow) {

@@ -115,6 +115,10 @@ struct ConfigChoice {
 ConfigChoice ChooseConfig(fp::Format format, const SceneRequirements& req, const ConfigOverrides& ov,
                           uint64_t mem_size, bool allow_overflow);
 
+// Throws InputError unless the RTL can traverse in `trav` (rt_core TravE,
+// TravM: at most fp32; kdrt render --trav-format takes wider ones).
+void CheckRtlTravFormat(const fp::Format& trav);
+
 // Throws InputError unless `config` can run a scene with `req` (the model's
 // own check, so a model started by hand refuses too).
 void CheckConfigCovers(const CoreConfig& config, const SceneRequirements& req, uint64_t mem_size,

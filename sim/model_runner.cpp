@@ -238,6 +238,7 @@ ModelRun Simulate(const std::vector<uint8_t>& fp32_image, const std::vector<Ray>
   const std::vector<uint8_t> image = CoreImage(fp32_image, format);
   const SceneRequirements req = DeriveRequirements(ImageView(image));
   ConfigOverrides ov;
+  if (trav) CheckRtlTravFormat(*trav);
   if (trav && *trav != format) {
     ov.value[kTravE] = trav->e;
     ov.value[kTravM] = trav->m;

@@ -16,6 +16,7 @@
 #include "setup/extreme_cases.h"
 #include "setup/prepared_scene.h"
 #include "setup/trace_outputs.h"
+#include "sim/core_params.h"
 #include "sim/model_runner.h"
 #include "tools/commands.h"
 #include "trace/hit_compare.h"
@@ -69,11 +70,9 @@ int Run(const ExtremesArgs& args) {
   const std::regex pick(args.cases.empty() ? ".*" : args.cases);
   std::optional<fp::Format> trav;
   if (!args.trav_format.empty()) {
-    if (args.sim && (trav->e > 8 || trav->m > 23)) {
-      throw InputError("--trav-format " + trav->Name() + " with --sim: the RTL traverses in at most fp32 (e8m23)");
-    }
     trav = fp::ParseFormat(args.trav_format);
     for (const fp::Format& f : formats) CheckTravFormat(f, *trav);
+    if (args.sim) sim::CheckRtlTravFormat(*trav);
   }
   std::vector<ExtremeCase> cases;
   for (ExtremeCase& c : MakeExtremeCases(args.reduced)) {

@@ -75,10 +75,7 @@ int RunSim(SimArgs args) {
     // model, sized for the scene like any non-default parameter.
     const fp::Format trav = fp::ParseFormat(args.trav_format);
     CheckTravFormat(format, trav);
-    if (trav.e > 8 || trav.m > 23) {
-      throw InputError("--trav-format " + args.trav_format + ": the RTL traverses in at most fp32 (e8m23); "
-                       "kdrt render --trav-format takes wider ones");
-    }
+    sim::CheckRtlTravFormat(trav);
     if (trav != format) {
       args.overrides.value[sim::kTravE] = trav.e;
       args.overrides.value[sim::kTravM] = trav.m;

@@ -476,6 +476,9 @@ TEST_F(SimCli, WiderTraversalRunsInTheRtl) {
   for (const std::string& bad : {std::string("--trav-format bf16"), std::string("--trav-format fp64")}) {
     const RunResult r = RunKdrt("sim " + common + " " + bad + " -o " + Path("c.png"));
     EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_NE(r.output.find(bad == "--trav-format bf16" ? "does not hold every value of fp16" : "at most e8m23"),
+              std::string::npos)
+        << r.output;
     EXPECT_FALSE(fs::exists(Path("c.png"))) << bad;
   }
 }
