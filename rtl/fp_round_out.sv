@@ -39,18 +39,14 @@ module fp_round_out #(
     .clk_i, .en_i, .d_i(a_i), .q_o(a_q)
   );
 
-  // Did rounding to nearest move the value inwards?
-  logic back_lt_a, a_lt_back, inwards;
+  // Did rounding to nearest move the value inwards (below a for Up, above
+  // it otherwise)?
+  logic inwards;
   fp_widen #(.E(E), .M(M), .WE(WE), .WM(WM)) u_back (.a_i(nearest), .res_o(back));
-  fp_cmp #(.E(WE), .M(WM), .Stages(0)) u_cmp_up (
-    .clk_i, .rst_ni, .en_i, .valid_i(1'b1), .a_i(back), .b_i(a_q),
-    .valid_o(), .lt_o(back_lt_a), .le_o(), .eq_o(), .min_o(), .max_o()
+  fp_cmp #(.E(WE), .M(WM), .Stages(0)) u_cmp (
+    .clk_i, .rst_ni, .en_i, .valid_i(1'b1), .a_i(Up ? back : a_q), .b_i(Up ? a_q : back),
+    .valid_o(), .lt_o(inwards), .le_o(), .eq_o(), .min_o(), .max_o()
   );
-  fp_cmp #(.E(WE), .M(WM), .Stages(0)) u_cmp_down (
-    .clk_i, .rst_ni, .en_i, .valid_i(1'b1), .a_i(a_q), .b_i(back),
-    .valid_o(), .lt_o(a_lt_back), .le_o(), .eq_o(), .min_o(), .max_o()
-  );
-  assign inwards = Up ? back_lt_a : a_lt_back;
 
   // nudge(nudge(r, 1), K) == nudge(r, K + 1) under fp_nudge's rules (both
   // saturate at +inf and give +0 below the normal range), so both candidates

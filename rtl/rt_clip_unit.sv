@@ -90,19 +90,13 @@ module rt_clip_unit #(
     rt_delay #(.Width(TW), .Depth(LAdd)) u_d2 (
       .clk_i, .en_i(en), .d_i(inv_conv[TW*i +: TW]), .q_o(inv_sub[TW*i +: TW])
     );
-    if (Mixed) begin : g_widen
-      fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_o (.a_i(o_conv[W*i +: W]), .res_o(o_conv_t[TW*i +: TW]));
-    end else begin : g_same
-      assign o_conv_t[TW*i +: TW] = o_conv[W*i +: W];
-    end
+    fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_widen_o (
+      .a_i(o_conv[W*i +: W]), .res_o(o_conv_t[TW*i +: TW])
+    );
     for (genvar k = 0; k < 2; k++) begin : g_side
-      if (Mixed) begin : g_widen_plane
-        fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_plane (
-          .a_i(plane[W*(2*i+k) +: W]), .res_o(plane_t[TW*(2*i+k) +: TW])
-        );
-      end else begin : g_same_plane
-        assign plane_t[TW*(2*i+k) +: TW] = plane[W*(2*i+k) +: W];
-      end
+      fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_widen_plane (
+        .a_i(plane[W*(2*i+k) +: W]), .res_o(plane_t[TW*(2*i+k) +: TW])
+      );
       fp_add #(.E(TravE), .M(TravM)) u_sub (
         .clk_i, .rst_ni, .en_i(en), .valid_i(v_conv[2*i+k]), .a_i(plane_t[TW*(2*i+k) +: TW]),
         .b_i(o_conv_t[TW*i +: TW]), .sub_i(1'b1), .valid_o(v_sub[2*i+k]), .res_o(diff[TW*(2*i+k) +: TW])
@@ -120,13 +114,8 @@ module rt_clip_unit #(
   rt_delay #(.Width(TagWidth + 2 * W), .Depth(LConv + LAdd + LMul)) u_side (
     .clk_i, .en_i(en), .d_i({in_tag_i, in_tmin_i, in_tmax_i}), .q_o({tag_mul, tmin_q, tmax_q})
   );
-  if (Mixed) begin : g_widen_t
-    fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_tmin (.a_i(tmin_q), .res_o(tmin_t));
-    fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_tmax (.a_i(tmax_q), .res_o(tmax_t));
-  end else begin : g_same_t
-    assign tmin_t = tmin_q;
-    assign tmax_t = tmax_q;
-  end
+  fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_widen_tmin (.a_i(tmin_q), .res_o(tmin_t));
+  fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_widen_tmax (.a_i(tmax_q), .res_o(tmax_t));
   // All six distances advance together; one valid bit speaks for them.
   /* verilator lint_off UNUSEDSIGNAL */
   logic unused_valid;

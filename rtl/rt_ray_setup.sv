@@ -100,7 +100,6 @@ module rt_ray_setup #(
   localparam int unsigned TLoad = TScale + 1;        // their loads
   localparam int unsigned TCmp  = TLoad + LConv;     // comparisons, 1 / d[i]
   localparam int unsigned TAxis = TCmp + LCmp;       // axis choice, the shear divisions
-  localparam bit Mixed = TravE != E || TravM != M;
   localparam int unsigned LDivT = TravM + kdrt_fp_pkg::FpDivExtraLatency;
   localparam int unsigned LatencyI = TAxis + LDiv;   // the shears
   localparam int unsigned LatencyT = TCmp + LDivT;   // the traversal's 1 / d
@@ -221,11 +220,7 @@ module rt_ray_setup #(
   logic [3*W-1:0] abs_d;
   for (genvar i = 0; i < 3; i++) begin : g_inv
     logic [TW-1:0] d_t;
-    if (Mixed) begin : g_widen
-      fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_widen (.a_i(val[W*i +: W]), .res_o(d_t));
-    end else begin : g_same
-      assign d_t = val[W*i +: W];
-    end
+    fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_widen (.a_i(val[W*i +: W]), .res_o(d_t));
     fp_div #(.E(TravE), .M(TravM)) u_div (
       .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TCmp]), .a_i(OneT), .b_i(d_t),
       .valid_o(), .res_o(inv[TW*i +: TW])

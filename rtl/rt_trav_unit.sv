@@ -105,13 +105,8 @@ module rt_trav_unit #(
 
   // The split and o in the traversal's format (exact).
   logic [TW-1:0] split_t, o1_t;
-  if (Mixed) begin : g_widen
-    fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_split (.a_i(split), .res_o(split_t));
-    fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_o (.a_i(o1), .res_o(o1_t));
-  end else begin : g_same
-    assign split_t = split;
-    assign o1_t = o1;
-  end
+  fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_widen_split (.a_i(split), .res_o(split_t));
+  fp_widen #(.E(E), .M(M), .WE(TravE), .WM(TravM)) u_widen_o (.a_i(o1), .res_o(o1_t));
 
   // Stage group 2: split - o.
   logic          v2;

@@ -120,6 +120,13 @@ void CheckRtlTravFormat(const fp::Format& trav) {
   }
 }
 
+void OverrideTravFormat(const fp::Format& format, const fp::Format& trav, ConfigOverrides* ov) {
+  CheckRtlTravFormat(trav);
+  if (trav == format) return;
+  ov->value[kTravE] = trav.e;
+  ov->value[kTravM] = trav.m;
+}
+
 void CheckConfigCovers(const CoreConfig& c, const SceneRequirements& req, uint64_t mem_size, bool allow_overflow) {
   for (int i = 0; i < kParamCount; ++i) {
     const CoreParam& p = kCoreParams[i];

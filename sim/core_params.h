@@ -118,6 +118,10 @@ ConfigChoice ChooseConfig(fp::Format format, const SceneRequirements& req, const
 // Throws InputError unless the RTL can traverse in `trav` (rt_core TravE,
 // TravM: at most fp32; kdrt render --trav-format takes wider ones).
 void CheckRtlTravFormat(const fp::Format& trav);
+// Sets `ov`'s TravE, TravM for a core of `format` whose traversal is `trav`
+// (nothing when they are the same: the format's own model), after
+// CheckRtlTravFormat. The caller checks that trav holds format (CheckTravFormat).
+void OverrideTravFormat(const fp::Format& format, const fp::Format& trav, ConfigOverrides* ov);
 
 // Throws InputError unless `config` can run a scene with `req` (the model's
 // own check, so a model started by hand refuses too).

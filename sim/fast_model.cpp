@@ -397,7 +397,7 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   std::vector<std::vector<uint32_t>> paths(rays.size());
   TraceOptions to;
   to.format = cfg.Format();
-  if (cfg.TravFormat() != cfg.Format()) to.trav_format = cfg.TravFormat();
+  to.trav_format = cfg.TravFormat();
   to.query = spec.query;
   // A path that ends on an inner node is a ray whose push met a full stack
   // (StackDepth below the tree's depth, --allow-overflow): its thread goes

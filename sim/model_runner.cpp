@@ -238,11 +238,7 @@ ModelRun Simulate(const std::vector<uint8_t>& fp32_image, const std::vector<Ray>
   const std::vector<uint8_t> image = CoreImage(fp32_image, format);
   const SceneRequirements req = DeriveRequirements(ImageView(image));
   ConfigOverrides ov;
-  if (trav) CheckRtlTravFormat(*trav);
-  if (trav && *trav != format) {
-    ov.value[kTravE] = trav->e;
-    ov.value[kTravM] = trav->m;
-  }
+  if (trav) OverrideTravFormat(format, *trav, &ov);
   const ConfigChoice choice = ChooseConfig(format, req, ov, run.mem_size, run.allow_overflow);
   const ModelLocation loc = LocateModel(choice);
   if (!loc.built) BuildModel(choice, loc);

@@ -88,7 +88,7 @@ int Run(const ModelArgs& args) {
 
   TraceOptions to;
   to.format = config.Format();
-  if (config.TravFormat() != config.Format()) to.trav_format = config.TravFormat();
+  to.trav_format = config.TravFormat();
   to.query = query;
   // The reference with the core's stack: a ray whose push meets a full stack
   // ends there in both (--allow-overflow), so its record is compared too.

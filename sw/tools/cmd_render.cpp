@@ -200,7 +200,7 @@ Runner AddRenderCommand(CLI::App& app) {
   cmd->add_option("--trav-format", args->trav_format,
                   "Number format of the traversal alone (clip, split distances, cell intervals, stack), at least "
                   "--format's exponent and mantissa bits; default: --format. Splits and vertices stay stored in "
-                  "--format. Model only (the RTL core has one format)");
+                  "--format. kdrt sim --trav-format runs the RTL core with that traversal (at most fp32)");
   cmd->add_option("--image-format", args->image_format,
                   "Memory image the tracer reads: native (splits and vertices stored in --format's width; "
                   "fp64 reads the fp32 image) or fp32 (every format rounds on load). The hits are the same")

@@ -75,11 +75,7 @@ int RunSim(SimArgs args) {
     // model, sized for the scene like any non-default parameter.
     const fp::Format trav = fp::ParseFormat(args.trav_format);
     CheckTravFormat(format, trav);
-    sim::CheckRtlTravFormat(trav);
-    if (trav != format) {
-      args.overrides.value[sim::kTravE] = trav.e;
-      args.overrides.value[sim::kTravM] = trav.m;
-    }
+    sim::OverrideTravFormat(format, trav, &args.overrides);
   }
   const PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);

@@ -22,9 +22,8 @@ struct TraceOptions {
   fp::Format format{8, 23};
   // The traversal's own format (clip, split distances, cell intervals and
   // the stack), wider than `format` or equal; unset: `format`. The triangle
-  // test always runs in `format`. Model only: the RTL core has one datapath
-  // format (kdrt sim's RTL models refuse a separate one; its fast model
-  // estimates it).
+  // test always runs in `format`. The RTL core's TravE, TravM (kdrt sim
+  // --trav-format, at most fp32).
   std::optional<fp::Format> trav_format;
   IsectMethod isect = IsectMethod::kWatertight;
   Query query = Query::kClosest;  // kAny: shadow rays (common/ray.h)

@@ -68,8 +68,8 @@ bool RoundsInwards(const SoftArith& at, const SoftArith& ai, uint32_t x, bool up
   return inwards && (up ? ai.NudgeUp(r, 1) : ai.NudgeDown(r, 1)) != r;
 }
 
-Out Model(const SoftArith& a, const In& in) {
-  const TraversalStep<SoftArith> s = StepInnerNode(a, in.split, in.o, in.d, in.inv, in.t0, in.t1);
+// The unit's outputs for a step of the model; lo and hi as they are given.
+Out StepOut(const TraversalStep<SoftArith>& s, const In& in) {
   Out o;
   o.tag = in.tag;
   o.action = static_cast<uint32_t>(s.action);
@@ -83,21 +83,18 @@ Out Model(const SoftArith& a, const In& in) {
   return o;
 }
 
+Out Model(const SoftArith& a, const In& in) {
+  return StepOut(StepInnerNode(a, in.split, in.o, in.d, in.inv, in.t0, in.t1), in);
+}
+
 Out ModelMixed(const SoftArith& at, const SoftArith& ai, const In& in, Coverage* cov) {
   const fp::Format ft = at.format(), fi = ai.format();
   const TraversalStep<SoftArith> s = StepInnerNodeMixed(at, ai, in.split, Widen(at, ai, in.o), Widen(at, ai, in.d),
                                                         in.inv, Widen(at, ai, in.t0), Widen(at, ai, in.t1));
-  Out o;
-  o.tag = in.tag;
-  o.action = static_cast<uint32_t>(s.action);
-  o.first = s.below_first ? in.below : in.above;
-  o.second = s.below_first ? in.above : in.below;
-  o.ts = s.t_split;
+  Out o = StepOut(s, in);
   // The ends are test-format values (WidenForTest): the unit gives them in that format.
   o.lo = ai.Load(at.Store(s.t_lo));
   o.hi = ai.Load(at.Store(s.t_hi));
-  o.t0 = in.t0;
-  o.t1 = in.t1;
 
   const uint32_t ts = s.t_split;
   const uint32_t ts_test = ai.Load(at.Store(ts));
