@@ -1,4 +1,4 @@
-// Constants of the kdrt memory image, version 3: a mirror of
+// Constants of the kdrt memory image, version 4: a mirror of
 // sw/common/image_format.h (the C++ header is the source of truth, and
 // docs/memory-image.md its prose). Every value is little-endian in memory;
 // offsets are in bytes. Also the types shared by the core's units: the
@@ -10,7 +10,7 @@ package kdrt_pkg;
   // A unit uses only some of these.
   /* verilator lint_off UNUSEDPARAM */
 
-  localparam int unsigned ImgVersion      = 3;
+  localparam int unsigned ImgVersion      = 4;
   localparam int unsigned HeaderBytes     = 128;
   localparam int unsigned SectionAlign    = 64;
   localparam int unsigned NodeBytes       = 8;
@@ -52,8 +52,9 @@ package kdrt_pkg;
   // The layout of an image in a W-bit format (img::ImageLayout in
   // sw/common/image_format.h; docs/memory-image.md, "Packed formats"): nodes
   // per 16-byte beat, bits per node, index bits naming the slot in a beat,
-  // bits of a leaf's first list entry, and beats per triangle record. For
-  // W = 32 they give the fp32 records below.
+  // bits of a leaf's first list entry, triangle records per triangle line
+  // (1, or 2 at 15 <= W <= 21), beats per line, and the bits of a record's
+  // slot in its line. For W = 32 they give the fp32 records below.
   function automatic int unsigned img_nodes_per_beat(input int unsigned w);
     if (w <= 16) img_nodes_per_beat = 3;
     else img_nodes_per_beat = 2;
@@ -70,8 +71,17 @@ package kdrt_pkg;
     if (w <= 16) img_first_bits = 24;
     else img_first_bits = 32;
   endfunction
-  function automatic int unsigned img_tri_beats(input int unsigned w);
-    img_tri_beats = (9 * w + 32 + 127) / 128;
+  function automatic int unsigned img_tris_per_line(input int unsigned w);
+    if (9 * w > 128 && 9 * w <= 192) img_tris_per_line = 2;
+    else img_tris_per_line = 1;
+  endfunction
+  function automatic int unsigned img_tri_line_beats(input int unsigned w);
+    if (img_tris_per_line(w) == 2) img_tri_line_beats = 3;
+    else img_tri_line_beats = (9 * w + 127) / 128;
+  endfunction
+  function automatic int unsigned img_tri_slot_bits(input int unsigned w);
+    if (img_tris_per_line(w) == 2) img_tri_slot_bits = 192;
+    else img_tri_slot_bits = 128 * img_tri_line_beats(w);
   endfunction
 
   // Node word 1, bits [1:0]: split axis 0/1/2 or NodeLeaf; bits [31:2]: the

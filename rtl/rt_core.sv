@@ -95,12 +95,14 @@ module rt_core #(
   localparam int unsigned KW = kdrt_pkg::TScaleWidth;
   localparam int unsigned NodeOffW = $clog2(16 * NodeLineBeats);
   // The image of this format (docs/memory-image.md, "Packed formats"): node
-  // slots in 16-byte beats, triangle records of whole beats.
+  // slots in 16-byte beats, triangle lines of whole beats holding one or two records.
   localparam int unsigned NodeBits = kdrt_pkg::img_node_bits(W);
   localparam int unsigned SlotBits = kdrt_pkg::img_slot_bits(W);
   localparam bit ThreeSlots = kdrt_pkg::img_nodes_per_beat(W) == 3;
   localparam int unsigned FirstBits = kdrt_pkg::img_first_bits(W);
-  localparam int unsigned TriBeats = kdrt_pkg::img_tri_beats(W);
+  localparam int unsigned TriBeats = kdrt_pkg::img_tri_line_beats(W);
+  localparam int unsigned TriPerLine = kdrt_pkg::img_tris_per_line(W);
+  localparam int unsigned TriRecBits = kdrt_pkg::img_tri_slot_bits(W);
 
   // Thread idx as a one-hot vector, or none.
   function automatic logic [Threads-1:0] onehot(input logic en, input logic [ThW-1:0] idx);
@@ -253,7 +255,7 @@ module rt_core #(
   logic [AddrWidth-1:0]   list_req_addr;
   logic                   tri_valid, tri_fire;
   logic [TriIdxWidth-1:0] tri_id;
-  logic [128*TriBeats-1:0] tri_record;
+  logic [TriRecBits-1:0]  tri_record;
   logic [kdrt_pkg::TriVertexBits-1:0] tri_vertices;  // binary32, as the unit loads them
   assign job_push = node_fire && node_is_leaf && node_count != '0;
   if (W == 32) begin : g_tri32
@@ -303,7 +305,8 @@ module rt_core #(
   rt_mem_system #(.AddrWidth(AddrWidth), .TagWidth(ThW), .TriIdxWidth(TriIdxWidth),
                   .NodeCacheLines(NodeCacheLines), .ListCacheLines(ListCacheLines), .TriCacheLines(TriCacheLines),
                   .NodeLineBeats(NodeLineBeats), .ListLineBeats(ListLineBeats), .CacheMshrs(CacheMshrs),
-                  .CacheTargets(CacheTargets), .CacheWays(CacheWays), .TriLineBeats(TriBeats)) u_mem (
+                  .CacheTargets(CacheTargets), .CacheWays(CacheWays), .TriLineBeats(TriBeats),
+                  .TriPerLine(TriPerLine)) u_mem (
     .clk_i, .rst_ni, .tri_base_i,
     .node_req_valid_i(fetch_valid), .node_req_ready_o(node_req_ready), .node_req_tag_i(fetch_idx),
     .node_req_addr_i(node_base_i + (AddrWidth'(node_q[fetch_idx]) >> SlotBits << 4)),

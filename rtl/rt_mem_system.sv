@@ -5,7 +5,8 @@
 //               node port takes misses only, so that a miss does not take
 //               a cycle from the hits of the first
 //   list port:  a list entry's byte address -> list cache -> the entry's
-//               triangle id -> triangle cache -> the triangle's record
+//               triangle id -> triangle cache (lines of TriPerLine records,
+//               named by id / TriPerLine) -> the triangle's record
 //
 // Responses come back out of order, each with its request's tag (the list
 // port's tag comes back on the triangle response, with the id). Streams are
@@ -29,9 +30,12 @@ module rt_mem_system #(
   parameter int unsigned CacheTargets = 8,
   // Lines per set of each cache (rt_cache Ways): 1 = direct-mapped.
   parameter int unsigned CacheWays = 4,
-  // Beats of a triangle record: kdrt_pkg::img_tri_beats of the format (3 for fp32).
+  // Beats of a triangle line: kdrt_pkg::img_tri_line_beats of the format (3 for fp32).
   parameter int unsigned TriLineBeats = 3,
-  localparam int unsigned TriBits = 128 * TriLineBeats
+  // Triangle records per line, 1 or 2 (kdrt_pkg::img_tris_per_line; 2 for
+  // fp16 and bf16): record id % 2 of line id / 2 is the line's lower or upper half.
+  parameter int unsigned TriPerLine = 1,
+  localparam int unsigned TriBits = 128 * TriLineBeats / TriPerLine
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -136,23 +140,35 @@ module rt_mem_system #(
   assign entry_fire_o = list_resp_valid && tri_req_ready;
   assign tri_wait_o = list_resp_valid && !tri_req_ready;
 
-  // A triangle line is one record, named by the triangle id.
+  // A triangle line holds TriPerLine records and is named by id / TriPerLine.
+  localparam int unsigned PairShift = TriPerLine == 2 ? 1 : 0;
+  logic [TriIdxWidth-1:0]        tri_line_key;
+  logic [128*TriLineBeats-1:0]   tri_line;
+  assign tri_line_key = entry_tri >> PairShift;
   rt_cache #(.Lines(TriCacheLines), .LineBeats(TriLineBeats), .KeyWidth(TriIdxWidth),
              .AddrWidth(AddrWidth), .TagWidth(TagWidth + TriIdxWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets),
              .Ways(CacheWays))
       u_tri_cache (
     .clk_i, .rst_ni,
-    .req_valid_i(list_resp_valid), .req_ready_o(tri_req_ready), .req_key_i(entry_tri),
-    .req_addr_i(tri_base_i + (AddrWidth'(entry_tri) << 4) * AddrWidth'(TriLineBeats)),
+    .req_valid_i(list_resp_valid), .req_ready_o(tri_req_ready), .req_key_i(tri_line_key),
+    .req_addr_i(tri_base_i + (AddrWidth'(tri_line_key) << 4) * AddrWidth'(TriLineBeats)),
     .req_tag_i({entry_tag, entry_tri}),
     .req2_valid_i(1'b0), .req2_ready_o(unused_req2_ready[1]), .req2_key_i('0), .req2_addr_i('0), .req2_tag_i('0),
-    .resp_valid_o(tri_resp_valid_o), .resp_ready_i(tri_resp_ready_i), .resp_data_o(tri_resp_o),
+    .resp_valid_o(tri_resp_valid_o), .resp_ready_i(tri_resp_ready_i), .resp_data_o(tri_line),
     .resp_tag_o({tri_resp_tag_o, tri_resp_id_o}),
     .mem_req_valid_o(mem_valid[2]), .mem_req_ready_i(mem_ready[2]), .mem_req_addr_o(tri_mem_addr),
     .mem_req_id_o(tri_mem_id), .mem_resp_valid_i(mem_resp_valid[2]), .mem_resp_id_i(mem_resp_id),
     .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[2]), .miss_o(miss_o[2]), .merge_o(merge_o[2]),
     .wait_inflight_o(wait_inflight_o[2]), .wait_mshr_o(wait_mshr_o[2]), .filling_o(filling[2])
   );
+
+  // The record of the response's triangle: the id (from the tag) picks the
+  // half of a two-record line.
+  if (TriPerLine == 2) begin : g_tri_pair
+    assign tri_resp_o = tri_resp_id_o[0] ? tri_line[TriBits +: TriBits] : tri_line[TriBits-1:0];
+  end else begin : g_tri_one
+    assign tri_resp_o = tri_line;
+  end
 
   rt_mem_arb #(.N(3), .AddrWidth(AddrWidth), .IdW(MemIdW)) u_mem_arb (
     .clk_i, .rst_ni,

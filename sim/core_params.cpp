@@ -108,7 +108,7 @@ SceneRequirements DeriveRequirements(const ImageView& image) {
   r.addr_bits = BitsFor(r.image_bytes > 0 ? r.image_bytes - 1 : 0);
   r.node_bytes = image.layout().NodeSectionBytes(h.node_count);
   r.list_bytes = uint64_t{h.list_count} * img::kListEntryBytes;
-  r.tri_bytes = uint64_t{h.tri_count} * image.layout().TriangleBytes();
+  r.tri_bytes = image.layout().TriangleSectionBytes(h.tri_count);
   return r;
 }
 

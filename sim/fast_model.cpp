@@ -462,7 +462,7 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   const uint64_t lat_clip = static_cast<uint64_t>(setup) + 11 + (mixed ? 1 : 0);
   const uint64_t lat_trav = 8 + (mixed ? 1 : 0);
   const uint64_t lat_isect = static_cast<uint64_t>(m) + 34;
-  const int node_beats = 2, list_beats = 2, tri_beats = layout.TriangleBeats();
+  const int node_beats = 2, list_beats = 2, tri_beats = layout.TriangleLineBeats();
   const int ways = cfg[kCacheWays];
   Cache node(cfg[kNodeCacheLines], ways, node_beats, cfg[kCacheMshrs], cfg[kCacheTargets], true);
   Cache list(cfg[kListCacheLines], ways, list_beats, cfg[kCacheMshrs], cfg[kCacheTargets], false);
@@ -503,7 +503,10 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   bool record_valid = false;  // rt_hit_out's register: a record leaves this cycle
   uint64_t last_record = 0;
   const uint32_t* lists = image.lists();
-  const uint64_t tri_bytes = layout.TriangleBytes();
+  // The triangle cache's lines hold P records (img::ImageLayout): a line is
+  // named by id / P.
+  const uint32_t tri_per_line = static_cast<uint32_t>(layout.TrianglesPerLine());
+  const uint64_t tri_line_bytes = layout.TriangleLineBytes();
 
   // The memory is asked for its beat only in the cycles it may have one ready
   // when its token bucket comes out the same however the refill is split:
@@ -652,7 +655,8 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     if (list.resp_valid()) {
       const uint64_t tag = list.resp_tag();
       const uint32_t id = lists[tag & 0xFFFFFFFFu];
-      trq = {true, id, h.tri_offset + uint64_t{id} * tri_bytes, (tag >> 32) << 32 | id};
+      const uint32_t line = id / tri_per_line;
+      trq = {true, line, h.tri_offset + uint64_t{line} * tri_line_bytes, (tag >> 32) << 32 | id};
     }
     const bool tri_fire = tri.resp_valid();
     const int tri_thread = tri_fire ? static_cast<int>(tri.resp_tag() >> 32) : -1;

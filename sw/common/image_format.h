@@ -1,4 +1,4 @@
-// The kdrt memory image, version 3: the bytes a hardware core reads.
+// The kdrt memory image, version 4: the bytes a hardware core reads.
 // docs/memory-image.md is the prose specification of this header; the RTL
 // package (rtl/kdrt_pkg.sv) mirrors the constants. Everything is little-endian,
 // every section starts on a 64-byte boundary.
@@ -6,12 +6,12 @@
 //   offset 0    Header (128 bytes)
 //   node_offset nodes, packed into 16-byte beats, root = node 0
 //   list_offset leaf lists, list_count x uint32 (triangle ids)
-//   tri_offset  triangles, tri_count records of whole beats, by triangle id
+//   tri_offset  triangles, tri_count records in lines of whole beats, by triangle id
 //
 // Split positions and vertices are stored in the image's number format
 // (header format_e, format_m; ImageLayout below): an fp32 image holds
 // binary32 values in 8-byte nodes and 48-byte triangles, a narrower format
-// packs them (e.g. fp16: 3 nodes per beat, 32-byte triangles). The header's
+// packs them (e.g. fp16: 3 nodes per beat, 2 triangles per 48 bytes). The header's
 // bounds and frame are binary32 in every image.
 #pragma once
 
@@ -21,7 +21,7 @@
 namespace kdrt::img {
 
 inline constexpr char kMagic[8] = {'K', 'D', 'R', 'T', 'I', 'M', 'G', '\0'};
-inline constexpr uint32_t kVersion = 3;
+inline constexpr uint32_t kVersion = 4;
 inline constexpr uint32_t kHeaderBytes = 128;
 inline constexpr uint32_t kSectionAlign = 64;
 inline constexpr uint32_t kNodeBytes = 8;
@@ -105,10 +105,15 @@ inline constexpr uint32_t kMaxIndex = (1u << 30) - 1;
 // nodes share a beat (slot 3 is never used), slot i % 2 of beat i / 2 when
 // 2 do. The below child is the next slot, NextNode(i).
 //
-// Triangles: TriangleBeats() beats per record: the 9 coordinates v0.x,
-// v0.y, v0.z, v1.x, ..., v2.z at bits [k * W, (k + 1) * W), then the
-// triangle id (32 bits) at bit 9 * W, zeros after. For W = 32 this is
-// img::TriangleRecord.
+// Triangles: lines of TriangleLineBeats() beats, each holding
+// TrianglesPerLine() records (1, or 2 where two fit in 3 beats and one does
+// not fit in 1: 15 <= W <= 21, fp16 and bf16), so a record takes no more
+// beats than it needs. Triangle i is record i % P of line i / P, in the
+// record's slot of TriangleSlotBits() bits at bit (i % P) * slot: the 9
+// coordinates v0.x, v0.y, v0.z, v1.x, ..., v2.z at bits [k * W, (k + 1) * W),
+// then the triangle id (32 bits, a check; the hardware takes the id from the
+// leaf list) at bit 9 * W where it fits in the slot, zeros after. For W = 32
+// this is img::TriangleRecord.
 struct ImageLayout {
   int e = 8, m = 23;
 
@@ -120,8 +125,23 @@ struct ImageLayout {
   int CountBits() const { return NodeBits() - 2 - FirstBits(); }
   // Index bits that select the slot within a beat.
   int SlotBits() const { return NodesPerBeat() == 3 ? 2 : 1; }
-  int TriangleBeats() const { return (9 * Width() + 32 + 127) / 128; }
-  uint32_t TriangleBytes() const { return 16u * static_cast<uint32_t>(TriangleBeats()); }
+  int TrianglesPerLine() const { return 9 * Width() > 128 && 9 * Width() <= 192 ? 2 : 1; }
+  int TriangleLineBeats() const { return TrianglesPerLine() == 2 ? 3 : (9 * Width() + 127) / 128; }
+  uint32_t TriangleLineBytes() const { return 16u * static_cast<uint32_t>(TriangleLineBeats()); }
+  int TriangleSlotBits() const { return TrianglesPerLine() == 2 ? 192 : 128 * TriangleLineBeats(); }
+  bool TriangleHasId() const { return 9 * Width() + 32 <= TriangleSlotBits(); }
+  // Triangle i's line (byte offset within the triangle section) and its bit offset there.
+  uint64_t TriangleLineOffset(uint32_t i) const {
+    return uint64_t{i / static_cast<uint32_t>(TrianglesPerLine())} * TriangleLineBytes();
+  }
+  int TriangleBitOffset(uint32_t i) const {
+    return static_cast<int>(i % static_cast<uint32_t>(TrianglesPerLine())) * TriangleSlotBits();
+  }
+  // Bytes of the triangle section for n triangles, and per triangle on average.
+  uint64_t TriangleSectionBytes(uint64_t n) const {
+    return (n + TrianglesPerLine() - 1) / TrianglesPerLine() * TriangleLineBytes();
+  }
+  double BytesPerTriangle() const { return double(TriangleLineBytes()) / TrianglesPerLine(); }
   // The largest above-child index and leaf count the fields hold.
   uint64_t MaxAbove() const { return AboveBits() >= 30 ? kMaxIndex : (uint64_t{1} << AboveBits()) - 1; }
   uint64_t MaxFirst() const { return (uint64_t{1} << FirstBits()) - 1; }

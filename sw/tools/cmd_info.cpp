@@ -33,9 +33,10 @@ nlohmann::json ImageSizes(const std::vector<uint8_t>& bytes) {
   return {{"bytes", bytes.size()},
           {"node_bytes", v.layout().NodeSectionBytes(h.node_count)},
           {"list_bytes", uint64_t{h.list_count} * img::kListEntryBytes},
-          {"tri_bytes", uint64_t{h.tri_count} * v.layout().TriangleBytes()},
+          {"tri_bytes", v.layout().TriangleSectionBytes(h.tri_count)},
           {"nodes_per_beat", v.layout().NodesPerBeat()},
-          {"triangle_bytes", v.layout().TriangleBytes()}};
+          {"triangle_line_bytes", v.layout().TriangleLineBytes()},
+          {"triangles_per_line", v.layout().TrianglesPerLine()}};
 }
 
 // "exponent bits set by A, mantissa bits by B": the criteria at the minimum.

@@ -63,7 +63,7 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, co
   const uint64_t node_offset = AlignUp(img::kHeaderBytes);
   const uint64_t list_offset = AlignUp(node_offset + layout.NodeSectionBytes(tree.nodes.size()));
   const uint64_t tri_offset = AlignUp(list_offset + uint64_t{img::kListEntryBytes} * tree.lists.size());
-  const uint64_t total = AlignUp(tri_offset + uint64_t{layout.TriangleBytes()} * scene.triangles.size());
+  const uint64_t total = AlignUp(tri_offset + layout.TriangleSectionBytes(scene.triangles.size()));
   if (total > UINT32_MAX) {
     throw InputError(scene.source, 0,
                      "memory image would be " + std::to_string(total) +
@@ -130,10 +130,11 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, co
   }
   for (size_t i = 0; i < scene.triangles.size(); ++i) {
     const Triangle& t = scene.triangles[i];
-    uint8_t* rec = bytes.data() + tri_offset + i * layout.TriangleBytes();
+    uint8_t* line = bytes.data() + tri_offset + layout.TriangleLineOffset(static_cast<uint32_t>(i));
+    const uint64_t at = static_cast<uint64_t>(layout.TriangleBitOffset(static_cast<uint32_t>(i)));
     const glm::vec3* v[3] = {&t.v0, &t.v1, &t.v2};
-    for (int k = 0; k < 9; ++k) SetBits(rec, static_cast<uint64_t>(k) * w, w, StoredBits(layout, (*v[k / 3])[k % 3]));
-    SetBits(rec, 9ull * w, 32, static_cast<uint32_t>(i));
+    for (int k = 0; k < 9; ++k) SetBits(line, at + k * w, w, StoredBits(layout, (*v[k / 3])[k % 3]));
+    if (layout.TriangleHasId()) SetBits(line, at + 9ull * w, 32, static_cast<uint32_t>(i));
   }
   return bytes;
 }
@@ -193,14 +194,16 @@ img::Node ImageView::DecodeNode(uint32_t i) const {
 }
 
 img::TriangleRecord ImageView::DecodeTriangle(uint32_t id) const {
-  const uint8_t* rec = data_ + header_->tri_offset + uint64_t{id} * layout_.TriangleBytes();
+  const uint8_t* line = data_ + header_->tri_offset + layout_.TriangleLineOffset(id);
+  const uint64_t at = static_cast<uint64_t>(layout_.TriangleBitOffset(id));
   const int w = layout_.Width();
   img::TriangleRecord r{};
   float* v[3] = {r.v0, r.v1, r.v2};
   for (int k = 0; k < 9; ++k) {
-    v[k / 3][k % 3] = LoadedFloat(layout_, static_cast<uint32_t>(GetBits(rec, static_cast<uint64_t>(k) * w, w)));
+    v[k / 3][k % 3] = LoadedFloat(layout_, static_cast<uint32_t>(GetBits(line, at + k * w, w)));
   }
-  r.id = static_cast<uint32_t>(GetBits(rec, 9ull * w, 32));
+  // A record without room for its id (img::ImageLayout) reads as its index.
+  r.id = layout_.TriangleHasId() ? static_cast<uint32_t>(GetBits(line, at + 9ull * w, 32)) : id;
   return r;
 }
 
@@ -238,7 +241,7 @@ ImageView::ImageView(const uint8_t* data, size_t size, const std::string& name)
   };
   check_section(h.node_offset, layout_.NodeSectionBytes(h.node_count), 1, "node");
   check_section(h.list_offset, h.list_count, img::kListEntryBytes, "leaf list");
-  check_section(h.tri_offset, h.tri_count, layout_.TriangleBytes(), "triangle");
+  check_section(h.tri_offset, layout_.TriangleSectionBytes(h.tri_count), 1, "triangle");
   if (h.node_count == 0) fail("no root node");
   for (int i = 0; i < 3; ++i) {
     if (!std::isfinite(h.frame_origin[i])) fail("frame origin is not finite");

@@ -155,11 +155,11 @@ TradeResult MeasureTrade(const PreparedScene& p, const RaySet& rays, const Trade
   }
   if (o.area) {
     // rt_mem_system has no format parameter in the table: it is counted with
-    // fp32's 3-beat triangle lines, where a narrower core's image has 2- or
-    // 1-beat records (docs/memory-image.md).
+    // fp32's 3-beat triangle lines, where some narrower cores' images have
+    // 2- or 1-beat lines (docs/memory-image.md).
     std::string narrower;
     for (const FormatResult& r : t.formats) {
-      if (LayoutFor(r.format).TriangleBeats() < 3) narrower += (narrower.empty() ? "" : ", ") + r.format.Name();
+      if (LayoutFor(r.format).TriangleLineBeats() < 3) narrower += (narrower.empty() ? "" : ", ") + r.format.Name();
     }
     if (!narrower.empty()) {
       t.notes.push_back("area of " + narrower + " counts rt_mem_system with fp32's 3-beat triangle cache lines; "

@@ -4,7 +4,9 @@
 //     and that request's whole line;
 //   - every list request is answered exactly once, on the triangle port,
 //     with its tag, the triangle id its entry holds, and that triangle's
-//     48-byte record (tri_base + 48 * id);
+//     record: 48 bytes at tri_base + 48 * id, or with two records per line
+//     (TriPerLine 2, the fp16 and bf16 images) 24 bytes at
+//     tri_base + 48 * (id / 2) + 24 * (id % 2);
 //   - per cache, hits + misses == requests taken (the triangle cache's:
 //     entries passed on); mem_wait_o is high while a memory request waits;
 //   - the memory port names an address in memory, and answers come back
@@ -13,12 +15,14 @@
 // per cycle, and refuses requests at random; node requests come in bursts
 // and may change or drop while not taken (the core's arbiter does), list
 // requests are held until taken; both responses meet random backpressure.
-// Twice: direct-mapped caches, and 2-way ones (CacheWays 2).
+// Three times: direct-mapped caches, 2-way ones (CacheWays 2), and
+// direct-mapped with two triangle records per line.
 #include <cstdio>
 #include <map>
 #include <vector>
 
 #include "Vrt_mem_system.h"
+#include "Vrt_mem_system_pairs.h"
 #include "Vrt_mem_system_ways2.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
@@ -30,7 +34,7 @@ using sim::SimCtrl;
 
 // As verilated (tests/rtl/CMakeLists.txt): AddrWidth 20, TagWidth 4,
 // TriIdxWidth 8, 4 lines per cache, 2-beat node and list lines, 3 miss
-// registers per cache; CacheWays 1 and 2.
+// registers per cache; CacheWays 1 and 2; TriPerLine 1 and 2.
 constexpr int kNodeLineBytes = 32;
 constexpr uint32_t kTags = 16;
 constexpr uint32_t kNodeBase = 0x01000, kNodeBytes = 0x300;   // nodes: lines reused and evicted
@@ -60,7 +64,7 @@ struct Beat {
 };
 
 template <class Dut>
-bool Run(const char* name, uint64_t count) {
+bool Run(const char* name, uint64_t count, uint32_t tris_per_line = 1) {
   std::printf("rt_mem_system, %s:\n", name);
   SimCtrl<Dut> sim;
   Dut& dut = sim.top();
@@ -170,8 +174,10 @@ bool Run(const char* name, uint64_t count) {
       auto it = range.first;
       while (it != range.second && EntryTri((it->second - kListBase) / 4) != id) ++it;
       if (it == range.second) return fail("triangle response that no outstanding list request of its tag names");
-      for (int k = 0; k < 48; ++k) {
-        if (GetBits(dut.tri_resp_o, 8 * k, 8) != MemByte(kTriBase + 48 * id + k)) return fail("triangle record");
+      const uint32_t record_bytes = 48 / tris_per_line;
+      const uint32_t record = kTriBase + 48 * (id / tris_per_line) + record_bytes * (id % tris_per_line);
+      for (uint32_t k = 0; k < record_bytes; ++k) {
+        if (GetBits(dut.tri_resp_o, 8 * k, 8) != MemByte(record + k)) return fail("triangle record");
       }
       list_out.erase(it);
       ++tri_answered;
@@ -214,6 +220,7 @@ int main(int argc, char** argv) {
   const uint64_t count = LongRun() ? 1000000 : 100000;
   bool ok = Run<Vrt_mem_system>("direct-mapped caches", count);
   ok = Run<Vrt_mem_system_ways2>("2-way caches", count) && ok;
+  ok = Run<Vrt_mem_system_pairs>("two triangle records per line", count, 2) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

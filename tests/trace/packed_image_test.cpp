@@ -24,21 +24,30 @@ std::vector<fp::Format> FormatsUnderTest() {
 TEST(PackedImage, LayoutOfThePresets) {
   struct Want {
     fp::Format f;
-    int nodes_per_beat, node_bits, above_bits, count_bits, triangle_bytes;
+    int nodes_per_beat, node_bits, above_bits, count_bits, line_bytes, per_line;
+    bool id;
   };
-  // W > 16: two 64-bit nodes per beat; W <= 16: three of 42 bits. A triangle
-  // takes the beats its 9 W-bit coordinates and 32-bit id need.
-  for (const Want& w : {Want{fp::kFp32, 2, 64, 30, 30, 48}, Want{fp::kFp24, 2, 64, 38, 30, 32},
-                        Want{fp::kBf16, 3, 42, 24, 16, 32}, Want{fp::kFp16, 3, 42, 24, 16, 32},
-                        Want{fp::ParseFormat("e4m3"), 3, 42, 32, 16, 16}}) {
+  // W > 16: two 64-bit nodes per beat; W <= 16: three of 42 bits. A
+  // triangle line takes the beats its 9 W-bit coordinates need, or holds two
+  // records in 3 beats where one would take 2 (15 <= W <= 21); the id goes
+  // where it fits.
+  for (const Want& w :
+       {Want{fp::kFp32, 2, 64, 30, 30, 48, 1, true}, Want{fp::kFp24, 2, 64, 38, 30, 32, 1, true},
+        Want{fp::kBf16, 3, 42, 24, 16, 48, 2, true}, Want{fp::kFp16, 3, 42, 24, 16, 48, 2, true},
+        Want{fp::ParseFormat("e5m7"), 3, 42, 27, 16, 16, 1, false},
+        Want{fp::ParseFormat("e4m3"), 3, 42, 32, 16, 16, 1, true}}) {
     const img::ImageLayout l = LayoutFor(w.f);
     EXPECT_EQ(l.NodesPerBeat(), w.nodes_per_beat) << w.f.Name();
     EXPECT_EQ(l.NodeBits(), w.node_bits) << w.f.Name();
     EXPECT_EQ(l.AboveBits(), w.above_bits) << w.f.Name();
     EXPECT_EQ(l.CountBits(), w.count_bits) << w.f.Name();
-    EXPECT_EQ(l.TriangleBytes(), static_cast<uint32_t>(w.triangle_bytes)) << w.f.Name();
+    EXPECT_EQ(l.TriangleLineBytes(), static_cast<uint32_t>(w.line_bytes)) << w.f.Name();
+    EXPECT_EQ(l.TrianglesPerLine(), w.per_line) << w.f.Name();
+    EXPECT_EQ(l.TriangleHasId(), w.id) << w.f.Name();
     EXPECT_LE(l.NodesPerBeat() * l.NodeBits(), 128) << w.f.Name();
-    EXPECT_LE(9 * l.Width() + 32, 8 * static_cast<int>(l.TriangleBytes())) << w.f.Name();
+    EXPECT_LE(9 * l.Width() + (w.id ? 32 : 0), l.TriangleSlotBits()) << w.f.Name();
+    EXPECT_LE(l.TrianglesPerLine() * l.TriangleSlotBits(), 8 * static_cast<int>(l.TriangleLineBytes())) << w.f.Name();
+    EXPECT_EQ(l.TriangleSectionBytes(5), (5 + w.per_line - 1) / w.per_line * uint64_t(w.line_bytes)) << w.f.Name();
   }
   // fp64 traces the fp32 image.
   EXPECT_TRUE(LayoutFor(fp::kFp64).IsFp32());
@@ -77,6 +86,33 @@ TEST(PackedImage, Fp32LayoutIsTheFp32RecordsByteForByte) {
     std::memcpy(&r, p.bytes.data() + h.tri_offset + 48ull * t, 48);
     ASSERT_EQ(r.id, t);
     ASSERT_EQ(r.pad[0] | r.pad[1], 0u);
+  }
+}
+
+// fp16 and bf16 put two records in a 3-beat line (image version 4), so their
+// triangles take half of fp32's bytes, the second record of a line at bit
+// 192 (its own id there too); an odd count leaves one slot of the last line zero.
+TEST(PackedImage, Fp16TrianglesTakeHalfOfFp32sBytes) {
+  Prepared p(GenerateScene("balls", 2000));
+  const ImageView fp32 = p.view();
+  const uint32_t n = fp32.header().tri_count;
+  for (const fp::Format& f : {fp::kFp16, fp::kBf16}) {
+    const img::ImageLayout l = LayoutFor(f);
+    const std::vector<uint8_t> bytes = RepackImage(fp32, l);
+    const ImageView v(bytes);
+    const uint64_t fp32_tris = uint64_t{n} * img::kTriangleBytes;
+    EXPECT_EQ(l.TriangleSectionBytes(n), (n + 1) / 2 * 48ull) << f.Name();
+    EXPECT_LE(2 * l.TriangleSectionBytes(n), fp32_tris + 48) << f.Name();
+    EXPECT_LT(bytes.size(), p.bytes.size() * 2 / 3) << f.Name();
+    const uint8_t* tris = bytes.data() + v.header().tri_offset;
+    for (uint32_t t = 0; t < n; ++t) {
+      uint32_t id;
+      std::memcpy(&id, tris + 48ull * (t / 2) + 24 * (t % 2) + 18, 4);
+      ASSERT_EQ(id, t) << f.Name();
+    }
+    if (n % 2 == 1) {
+      for (int k = 24; k < 48; ++k) ASSERT_EQ(tris[48ull * (n / 2) + k], 0) << f.Name();
+    }
   }
 }
 
