@@ -163,7 +163,7 @@ TradeResult MeasureTrade(const PreparedScene& p, const RaySet& rays, const Trade
     }
     if (!narrower.empty()) {
       t.notes.push_back("area of " + narrower + " counts rt_mem_system with fp32's 3-beat triangle cache lines; "
-                        "their cores hold shorter records, so their cells and flip-flops are overestimated (docs/trade.md)");
+                        "those cores read shorter lines, so their cells and flip-flops are overestimated (docs/trade.md)");
     }
   }
   if (t.formats.empty()) {
