@@ -137,11 +137,10 @@ struct ImageLayout {
   int TriangleBitOffset(uint32_t i) const {
     return static_cast<int>(i % static_cast<uint32_t>(TrianglesPerLine())) * TriangleSlotBits();
   }
-  // Bytes of the triangle section for n triangles, and per triangle on average.
+  // Bytes of the triangle section for n triangles.
   uint64_t TriangleSectionBytes(uint64_t n) const {
     return (n + TrianglesPerLine() - 1) / TrianglesPerLine() * TriangleLineBytes();
   }
-  double BytesPerTriangle() const { return double(TriangleLineBytes()) / TrianglesPerLine(); }
   // The largest above-child index and leaf count the fields hold.
   uint64_t MaxAbove() const { return AboveBits() >= 30 ? kMaxIndex : (uint64_t{1} << AboveBits()) - 1; }
   uint64_t MaxFirst() const { return (uint64_t{1} << FirstBits()) - 1; }
