@@ -19,12 +19,14 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "common/ray.h"
 #include "fp/format.h"
 #include "trace/frame.h"
 #include "trace/intersect.h"
+#include "trace/leaf_x4.h"
 #include "trace/memory_image.h"
 
 namespace kdrt {
@@ -315,9 +317,36 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
       continue;
     }
     if (counters) ++counters->leaves;
-    const uint32_t count = n.Count();
+    uint32_t count = n.Count();
     if (count > 0) {
       const typename Ai::T leaf_tmax = best.t;
+#if KDRT_HAVE_LEAF_X4
+      // Native fp32 on an fp32 image: four tests at a time, bit for bit the
+      // scalar ones (trace/leaf_x4.h). The best-hit rule does not depend on
+      // the order of the candidates.
+      if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
+        if (isect == IsectMethod::kWatertight && image.raw_triangles() != nullptr) {
+          const uint32_t* ids = lists + n.FirstEntry();
+          if (counters) counters->tri_tests += count;
+          for (uint32_t k = 0; k < count; k += 4) {
+            float ct[4], cu[4], cv[4];
+            const uint32_t group = count - k < 4 ? count - k : 4;
+            for (unsigned m = IntersectWatertightX4(r, image.raw_triangles(), ids + k, group, leaf_tmax, ct, cu, cv);
+                 m != 0; m &= m - 1) {
+              const int lane = __builtin_ctz(m);
+              const uint32_t id = ids[k + lane];
+              if (ct[lane] < best.t || (ct[lane] == best.t && id < best.prim)) {
+                best.t = ct[lane];
+                best.u = cu[lane];
+                best.v = cv[lane];
+                best.prim = id;
+              }
+            }
+          }
+          count = 0;  // done
+        }
+      }
+#endif
       for (uint32_t k = 0; k < count; ++k) {
         const uint32_t id = lists[n.FirstEntry() + k];
         if (counters) ++counters->tri_tests;
