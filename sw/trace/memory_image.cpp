@@ -12,25 +12,30 @@ namespace {
 
 uint64_t AlignUp(uint64_t x) { return (x + img::kSectionAlign - 1) / img::kSectionAlign * img::kSectionAlign; }
 
-// Little-endian bit fields of up to 64 bits at any bit offset.
+// Little-endian bit fields of up to 64 bits at any bit offset, a byte (or
+// the part of one in the field) at a time; only the field's bytes are read
+// or written.
 uint64_t GetBits(const uint8_t* p, uint64_t bit, int n) {
   uint64_t v = 0;
-  for (int k = 0; k < n; ++k) {
-    const uint64_t b = bit + static_cast<uint64_t>(k);
-    v |= uint64_t{(p[b >> 3] >> (b & 7)) & 1u} << k;
+  for (int got = 0; got < n;) {
+    const uint64_t b = bit + static_cast<uint64_t>(got);
+    const int off = static_cast<int>(b & 7);
+    const int take = std::min(8 - off, n - got);
+    v |= uint64_t{(p[b >> 3] >> off) & ((1u << take) - 1u)} << got;
+    got += take;
   }
   return v;
 }
 
 void SetBits(uint8_t* p, uint64_t bit, int n, uint64_t v) {
-  for (int k = 0; k < n; ++k) {
-    const uint64_t b = bit + static_cast<uint64_t>(k);
-    const uint8_t mask = static_cast<uint8_t>(1u << (b & 7));
-    if ((v >> k) & 1u) {
-      p[b >> 3] |= mask;
-    } else {
-      p[b >> 3] &= static_cast<uint8_t>(~mask);
-    }
+  for (int put = 0; put < n;) {
+    const uint64_t b = bit + static_cast<uint64_t>(put);
+    const int off = static_cast<int>(b & 7);
+    const int take = std::min(8 - off, n - put);
+    const unsigned mask = ((1u << take) - 1u) << off;
+    const unsigned field = static_cast<unsigned>((v >> put) << off) & mask;
+    p[b >> 3] = static_cast<uint8_t>((p[b >> 3] & ~mask) | field);
+    put += take;
   }
 }
 
