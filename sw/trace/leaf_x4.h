@@ -4,8 +4,9 @@
 // test, under the same MXCSR (FTZ/DAZ, round to nearest, no contraction:
 // -ffp-contract=off), so its t, u, v and hit decision are the scalar test's
 // bit for bit; only the branches are gone. tests/trace/leaf_x4_test.cpp checks
-// it against the scalar test. GCC/Clang vector extensions: SSE on x86-64,
-// NEON on AArch64, no intrinsics.
+// it against the scalar test. GCC vector extensions (__builtin_shuffle is
+// GCC's): SSE on x86-64, NEON on AArch64, no intrinsics; other compilers
+// keep the scalar loop.
 #pragma once
 
 #include <cstdint>
@@ -17,7 +18,7 @@
 
 namespace kdrt {
 
-#if defined(__GNUC__)
+#if defined(__GNUC__) && !defined(__clang__)
 #define KDRT_HAVE_LEAF_X4 1
 
 namespace leaf_x4 {
