@@ -284,6 +284,22 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
   int sp = 0;
   int in_plane = 0;  // stack entries with a NaN entry t (InPlane)
   const uint32_t* lists = image.lists();
+  // A leaf's candidate: the closest hit so far if its t is smaller, or equal
+  // with a smaller triangle id (so the order of a leaf's tests does not matter).
+  const auto offer = [&ai, &best](typename Ai::T t, typename Ai::T u, typename Ai::T v, uint32_t id) {
+    if (ai.Lt(t, best.t) || (ai.Eq(t, best.t) && id < best.prim)) {
+      best.t = t;
+      best.u = u;
+      best.v = v;
+      best.prim = id;
+    }
+  };
+  // Native fp32 on an fp32 image tests a leaf four triangles at a time, bit
+  // for bit the scalar tests (trace/leaf_x4.h).
+  bool four_wide = false;
+  if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
+    four_wide = KDRT_HAVE_LEAF_X4 && isect == IsectMethod::kWatertight && image.raw_triangles() != nullptr;
+  }
   uint32_t node = 0;
   for (;;) {
     const img::Node n = image.node(node);
@@ -317,49 +333,31 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
       continue;
     }
     if (counters) ++counters->leaves;
-    uint32_t count = n.Count();
-    if (count > 0) {
-      const typename Ai::T leaf_tmax = best.t;
+    const uint32_t count = n.Count();
+    const uint32_t* ids = lists + n.FirstEntry();
+    const typename Ai::T leaf_tmax = best.t;
+    if (counters) counters->tri_tests += count;
+    if (four_wide) {
 #if KDRT_HAVE_LEAF_X4
-      // Native fp32 on an fp32 image: four tests at a time, bit for bit the
-      // scalar ones (trace/leaf_x4.h). The best-hit rule does not depend on
-      // the order of the candidates.
       if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
-        if (isect == IsectMethod::kWatertight && image.raw_triangles() != nullptr) {
-          const uint32_t* ids = lists + n.FirstEntry();
-          if (counters) counters->tri_tests += count;
-          for (uint32_t k = 0; k < count; k += 4) {
-            float ct[4], cu[4], cv[4];
-            const uint32_t group = count - k < 4 ? count - k : 4;
-            for (unsigned m = IntersectWatertightX4(r, image.raw_triangles(), ids + k, group, leaf_tmax, ct, cu, cv);
-                 m != 0; m &= m - 1) {
-              const int lane = __builtin_ctz(m);
-              const uint32_t id = ids[k + lane];
-              if (ct[lane] < best.t || (ct[lane] == best.t && id < best.prim)) {
-                best.t = ct[lane];
-                best.u = cu[lane];
-                best.v = cv[lane];
-                best.prim = id;
-              }
-            }
+        for (uint32_t k = 0; k < count; k += 4) {
+          float ct[4], cu[4], cv[4];
+          const uint32_t group = count - k < 4 ? count - k : 4;
+          for (unsigned m = IntersectWatertightX4(r, image.raw_triangles(), ids + k, group, leaf_tmax, ct, cu, cv);
+               m != 0; m &= m - 1) {
+            const int lane = __builtin_ctz(m);
+            offer(ct[lane], cu[lane], cv[lane], ids[k + lane]);
           }
-          count = 0;  // done
         }
       }
 #endif
+    } else {
       for (uint32_t k = 0; k < count; ++k) {
-        const uint32_t id = lists[n.FirstEntry() + k];
-        if (counters) ++counters->tri_tests;
+        const uint32_t id = ids[k];
         const Candidate<Ai> c = isect == IsectMethod::kWatertight
                                     ? IntersectWatertight(ai, r, image.triangle(id), leaf_tmax)
                                     : IntersectMoller(ai, r, image.triangle(id), leaf_tmax);
-        if (!c.hit) continue;
-        if (ai.Lt(c.t, best.t) || (ai.Eq(c.t, best.t) && id < best.prim)) {
-          best.t = c.t;
-          best.u = c.u;
-          best.v = c.v;
-          best.prim = id;
-        }
+        if (c.hit) offer(c.t, c.u, c.v, id);
       }
     }
     const bool may_stop = best.prim != kNoPrim && in_plane == 0;

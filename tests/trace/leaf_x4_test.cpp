@@ -21,12 +21,6 @@ namespace {
 
 #if KDRT_HAVE_LEAF_X4
 
-uint32_t Bits(float x) {
-  uint32_t u;
-  std::memcpy(&u, &x, 4);
-  return u;
-}
-
 img::TriangleRecord Record(const float v[9], uint32_t id) {
   img::TriangleRecord t{};
   std::memcpy(t.v0, v, 3 * sizeof(float));
@@ -96,9 +90,9 @@ TEST(LeafX4, EveryLaneIsTheScalarTestBitForBit) {
         ASSERT_EQ(c.hit, ((mask >> k) & 1u) != 0) << "round " << round << " lane " << k << " of " << n;
         if (!c.hit) continue;
         ++hits;
-        ASSERT_EQ(Bits(c.t), Bits(t[k])) << "round " << round << " lane " << k;
-        ASSERT_EQ(Bits(c.u), Bits(u[k])) << "round " << round << " lane " << k;
-        ASSERT_EQ(Bits(c.v), Bits(w[k])) << "round " << round << " lane " << k;
+        ASSERT_EQ(fp::BitsOf(c.t), fp::BitsOf(t[k])) << "round " << round << " lane " << k;
+        ASSERT_EQ(fp::BitsOf(c.u), fp::BitsOf(u[k])) << "round " << round << " lane " << k;
+        ASSERT_EQ(fp::BitsOf(c.v), fp::BitsOf(w[k])) << "round " << round << " lane " << k;
       }
     }
   }
