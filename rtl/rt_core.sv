@@ -29,6 +29,10 @@ module rt_core #(
   // or a wider one; intervals and stacks stay in (E, M) (docs/dataflow.md).
   parameter int unsigned TravE /*verilator public*/ = E,
   parameter int unsigned TravM /*verilator public*/ = M,
+  // The memory image's format (splits and vertices as stored): E, M or a
+  // narrower one, widened exactly on load (docs/memory-image.md).
+  parameter int unsigned ImgE /*verilator public*/ = E,
+  parameter int unsigned ImgM /*verilator public*/ = M,
   parameter int unsigned Threads /*verilator public*/ = 32,
   parameter int unsigned StackDepth /*verilator public*/ = 32,
   parameter int unsigned NodeIdxWidth /*verilator public*/ = 24,
@@ -50,6 +54,7 @@ module rt_core #(
   parameter int unsigned CacheWays /*verilator public*/ = 4,
   localparam int unsigned W = E + M + 1,
   localparam int unsigned TW = TravE + TravM + 1,
+  localparam int unsigned IW = ImgE + ImgM + 1,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1
 ) (
   input  logic                  clk_i,
@@ -94,15 +99,15 @@ module rt_core #(
   localparam int unsigned CountW = TriIdxWidth + 1;
   localparam int unsigned KW = kdrt_pkg::TScaleWidth;
   localparam int unsigned NodeOffW = $clog2(16 * NodeLineBeats);
-  // The image of this format (docs/memory-image.md, "Packed formats"): node
+  // The image of the image's format (docs/memory-image.md, "Packed formats"): node
   // slots in 16-byte beats, triangle lines of whole beats holding one or two records.
-  localparam int unsigned NodeBits = kdrt_pkg::img_node_bits(W);
-  localparam int unsigned SlotBits = kdrt_pkg::img_slot_bits(W);
-  localparam bit ThreeSlots = kdrt_pkg::img_nodes_per_beat(W) == 3;
-  localparam int unsigned FirstBits = kdrt_pkg::img_first_bits(W);
-  localparam int unsigned TriBeats = kdrt_pkg::img_tri_line_beats(W);
-  localparam int unsigned TriPerLine = kdrt_pkg::img_tris_per_line(W);
-  localparam int unsigned TriRecBits = kdrt_pkg::img_tri_slot_bits(W);
+  localparam int unsigned NodeBits = kdrt_pkg::img_node_bits(IW);
+  localparam int unsigned SlotBits = kdrt_pkg::img_slot_bits(IW);
+  localparam bit ThreeSlots = kdrt_pkg::img_nodes_per_beat(IW) == 3;
+  localparam int unsigned FirstBits = kdrt_pkg::img_first_bits(IW);
+  localparam int unsigned TriBeats = kdrt_pkg::img_tri_line_beats(IW);
+  localparam int unsigned TriPerLine = kdrt_pkg::img_tris_per_line(IW);
+  localparam int unsigned TriRecBits = kdrt_pkg::img_tri_slot_bits(IW);
 
   // Thread idx as a one-hot vector, or none.
   function automatic logic [Threads-1:0] onehot(input logic en, input logic [ThW-1:0] idx);
@@ -181,7 +186,7 @@ module rt_core #(
   );
   assign fetch2_fire = fetch2_valid && node_req2_ready;
 
-  // A node: bits [W-1:0] the split, then the axis (or NodeLeaf), then the
+  // A node: bits [IW-1:0] the split, then the axis (or NodeLeaf), then the
   // above child's index; a leaf reads {above bits, split bits} as its count
   // (high) and first list entry (low FirstBits). Node i is slot i % 2^SlotBits
   // of beat i / 2^SlotBits; its below child is the next slot.
@@ -190,8 +195,8 @@ module rt_core #(
   logic [ThW-1:0]               node_tag;
   logic [AddrWidth-1:0]         node_addr;
   logic [NodeBits-1:0]          node_bits;
-  logic [W-1:0]                 node_lo;
-  logic [NodeBits-W-3:0]        node_hi;
+  logic [IW-1:0]                node_lo;
+  logic [NodeBits-IW-3:0]       node_hi;
   logic [NodeBits-3:0]          node_payload;  // a leaf's {count, first}
   logic [1:0]                   node_axis;
   logic [31:0]                  node_split, node_first;
@@ -207,11 +212,11 @@ module rt_core #(
   assign node_below = (ThreeSlots && node_q[node_tag][1:0] == 2'd2) ? node_q[node_tag] + NodeIdxWidth'(2)
                                                                     : node_q[node_tag] + 1'b1;
   // The units load binary32: a narrower split widens exactly (the unit's
-  // load rounds it back to itself).
-  if (W == 32) begin : g_split32
+  // load rounds it back to itself, as the image's format is at most its own).
+  if (IW == 32) begin : g_split32
     assign node_split = node_lo;
   end else begin : g_split_widen
-    fp_to_f32 #(.E(E), .M(M)) u_widen (.a_i(node_lo), .f32_o(node_split));
+    fp_to_f32 #(.E(ImgE), .M(ImgM)) u_widen (.a_i(node_lo), .f32_o(node_split));
   end
 
   logic                    trav_in_ready, trav_valid, trav_push, trav_overflow, stack_full;
@@ -258,11 +263,11 @@ module rt_core #(
   logic [TriRecBits-1:0]  tri_record;
   logic [kdrt_pkg::TriVertexBits-1:0] tri_vertices;  // binary32, as the unit loads them
   assign job_push = node_fire && node_is_leaf && node_count != '0;
-  if (W == 32) begin : g_tri32
+  if (IW == 32) begin : g_tri32
     assign tri_vertices = tri_record[kdrt_pkg::TriVertexBits-1:0];
   end else begin : g_tri_widen
     for (genvar k = 0; k < 9; k++) begin : g_coord
-      fp_to_f32 #(.E(E), .M(M)) u_widen (.a_i(tri_record[W*k +: W]), .f32_o(tri_vertices[32*k +: 32]));
+      fp_to_f32 #(.E(ImgE), .M(ImgM)) u_widen (.a_i(tri_record[IW*k +: IW]), .f32_o(tri_vertices[32*k +: 32]));
     end
   end
   rt_list_unit #(.TagWidth(ThW), .Jobs(Threads), .CountWidth(CountW), .AddrWidth(AddrWidth)) u_list (

@@ -41,18 +41,23 @@ lint() {  # lint <top> <label> <extra verilator args...>
   count=$((count + 1))
 }
 
-# lint_wider_traversal <top> <file> <name> <E> <M>: if the unit has a TravE
-# parameter, lints it in (E, M) with every other preset at least as wide in
-# both fields as its traversal format.
-lint_wider_traversal() {
-  local top="$1" file="$2" name="$3" e="$4" m="$5" trav tname te tm
-  grep -qE '^\s*parameter\s+int\s+unsigned\s+TravE\b' "$file" || return 0
-  for trav in "${PRESETS[@]}"; do
-    IFS=: read -r tname te tm <<< "$trav"
-    if [ "$te" -ge "$e" ] && [ "$tm" -ge "$m" ] && [ "$tname" != "$name" ]; then
-      lint "$top" "$name traversal $tname" "${srcs[@]}" -y "$RTL" "$file" -GE="$e" -GM="$m" \
-        -GTravE="$te" -GTravM="$tm"
+# lint_format_pairs <top> <file> <name> <E> <M> <Prefix> <wider|narrower>:
+# if the unit has a <Prefix>E parameter, lints it in (E, M) with every other
+# preset at least as wide (Trav: a traversal wider than the test) or at most
+# as wide (Img: a narrower memory image) in both fields as <Prefix>E, <Prefix>M.
+lint_format_pairs() {
+  local top="$1" file="$2" name="$3" e="$4" m="$5" prefix="$6" dir="$7" other oname oe om
+  grep -qE "^\s*parameter\s+int\s+unsigned\s+${prefix}E\b" "$file" || return 0
+  for other in "${PRESETS[@]}"; do
+    IFS=: read -r oname oe om <<< "$other"
+    [ "$oname" != "$name" ] || continue
+    if [ "$dir" = wider ]; then
+      [ "$oe" -ge "$e" ] && [ "$om" -ge "$m" ] || continue
+    else
+      [ "$oe" -le "$e" ] && [ "$om" -le "$m" ] || continue
     fi
+    lint "$top" "$name $prefix $oname" "${srcs[@]}" -y "$RTL" "$file" -GE="$e" -GM="$m" \
+      -G"${prefix}E=$oe" -G"${prefix}M=$om"
   done
 }
 
@@ -84,15 +89,17 @@ for file in "$RTL"/*.sv; do
           fi
           ;;
       esac
-      lint_wider_traversal "$top" "$file" "$name" "$e" "$m"
+      lint_format_pairs "$top" "$file" "$name" "$e" "$m" Trav wider
     done
   else
     lint "$top" "defaults" "${srcs[@]}" -y "$RTL" "$file"
-    # A unit with a traversal format (rt_core: its E and M carry
-    # /*verilator public*/) is linted with each wider traversal too.
+    # A unit with a traversal and an image format (rt_core: its E and M carry
+    # /*verilator public*/) is linted with each wider traversal and each
+    # narrower image too.
     for fmt in "${PRESETS[@]}"; do
       IFS=: read -r name e m <<< "$fmt"
-      lint_wider_traversal "$top" "$file" "$name" "$e" "$m"
+      lint_format_pairs "$top" "$file" "$name" "$e" "$m" Trav wider
+      lint_format_pairs "$top" "$file" "$name" "$e" "$m" Img narrower
     done
   fi
   # rt_cache's sets and pseudo-LRU exist only with Ways > 1 (the default is 1).

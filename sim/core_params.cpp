@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/error.h"
+#include "trace/tracer.h"
 
 namespace kdrt::sim {
 namespace {
@@ -10,7 +11,8 @@ namespace {
 bool IsPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
 // The option's first long name, for messages ("--threads,--core-threads" -> "--threads"),
-// or what the parameter is when no option sets it alone (E, M, TravE, TravM).
+// or what the parameter is when no option sets it alone (E, M, TravE, TravM,
+// ImgE, ImgM).
 std::string FlagName(const CoreParam& p) {
   const std::string flag = p.flag;
   return flag.empty() ? std::string(p.what) : flag.substr(0, flag.find(','));
@@ -81,8 +83,8 @@ std::vector<std::string> CoreConfig::VerilatorDefines() const {
 CoreConfig DefaultConfig(fp::Format format) {
   CoreConfig c;
   for (int i = 0; i < kParamCount; ++i) c.value[i] = kCoreParams[i].default_value;
-  c[kE] = c[kTravE] = format.e;
-  c[kM] = c[kTravM] = format.m;
+  c[kE] = c[kTravE] = c[kImgE] = format.e;
+  c[kM] = c[kTravM] = c[kImgM] = format.m;
   return c;
 }
 
@@ -127,7 +129,15 @@ void OverrideTravFormat(const fp::Format& format, const fp::Format& trav, Config
   ov->value[kTravM] = trav.m;
 }
 
+void OverrideImageFormat(const fp::Format& format, const fp::Format& image, ConfigOverrides* ov) {
+  CheckImageFormat(format, image);
+  if (image == format) return;
+  ov->value[kImgE] = image.e;
+  ov->value[kImgM] = image.m;
+}
+
 void CheckConfigCovers(const CoreConfig& c, const SceneRequirements& req, uint64_t mem_size, bool allow_overflow) {
+  CheckImageFormat(c.Format(), c.ImageFormat());
   for (int i = 0; i < kParamCount; ++i) {
     const CoreParam& p = kCoreParams[i];
     if (c.value[i] >= Required(p.rule, req)) continue;

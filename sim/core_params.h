@@ -64,6 +64,8 @@ struct CoreConfig {
   fp::Format Format() const { return fp::Format{value[kE], value[kM]}; }
   // The traversal's format: Format() or a wider one (rt_core TravE, TravM).
   fp::Format TravFormat() const { return fp::Format{value[kTravE], value[kTravM]}; }
+  // The memory image's format: Format() or a narrower one (rt_core ImgE, ImgM).
+  fp::Format ImageFormat() const { return fp::Format{value[kImgE], value[kImgM]}; }
   // A file-name-safe identifier, e.g. e8m23v8.23-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4.
   std::string Key() const;
   nlohmann::json Json() const;
@@ -122,6 +124,9 @@ void CheckRtlTravFormat(const fp::Format& trav);
 // (nothing when they are the same: the format's own model), after
 // CheckRtlTravFormat. The caller checks that trav holds format (CheckTravFormat).
 void OverrideTravFormat(const fp::Format& format, const fp::Format& trav, ConfigOverrides* ov);
+// Sets `ov`'s ImgE, ImgM for a core of `format` reading an image of `image`
+// (nothing when they are the same), after CheckImageFormat (trace/tracer.h).
+void OverrideImageFormat(const fp::Format& format, const fp::Format& image, ConfigOverrides* ov);
 
 // Throws InputError unless `config` can run a scene with `req` (the model's
 // own check, so a model started by hand refuses too).

@@ -70,11 +70,11 @@ int Run(const ModelArgs& args) {
 
   const std::vector<uint8_t> bytes = ReadFile(args.image);
   const ImageView image(bytes, args.image);
-  if (image.layout().e != config.Format().e || image.layout().m != config.Format().m) {
+  if (image.layout().e != config.ImageFormat().e || image.layout().m != config.ImageFormat().m) {
     throw InputError(args.image, 0,
                      "an e" + std::to_string(image.layout().e) + "m" + std::to_string(image.layout().m) +
-                         " image, but this core computes in " + config.Format().Name() + " and reads the image of its own format "
-                         "(kdrt info --format F --image FILE writes it)");
+                         " image, but this core computes in " + config.Format().Name() + " and reads an image of " +
+                         config.ImageFormat().Name() + " (kdrt info --format F --image FILE writes it)");
   }
   const SceneRequirements req = DeriveRequirements(image);
   const uint64_t mem_size = args.run.mem_size ? args.run.mem_size : uint64_t{1} << config[kAddrWidth];

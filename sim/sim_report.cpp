@@ -52,6 +52,8 @@ nlohmann::json ReportJson(const ReportInputs& in) {
   return {
       {"command", "sim"},
       {"format", in.config.Format().Name()},
+      {"trav_format", in.config.TravFormat().Name()},
+      {"image_format", in.config.ImageFormat().Name()},
       {"loop", in.loop},
       {"model", in.config.Json()},
       {"requirements", in.requirements.Json()},

@@ -3,6 +3,7 @@
 // is traced, so that a format too small for the scene never fails silently.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,11 @@ struct PrecisionCheck {
 // Prints each warning on stderr as "kdrt: warning: <text>"; with `strict`
 // throws InputError(<text>) instead (the caller then writes nothing).
 // `rays_name` (e.g. "shadow", for a shaded frame's passes) is named in the
-// text when given.
+// text when given. `image_format`, when given, is the format of the image the
+// datapath reads (narrower than `format`: --image-format): the storage
+// criteria are checked against it.
 PrecisionCheck CheckPrecision(const ImageView& image, const std::vector<Ray>& rays, const fp::Format& format,
-                              bool strict, int threads, const std::string& rays_name = "");
+                              bool strict, int threads, const std::string& rays_name = "",
+                              std::optional<fp::Format> image_format = std::nullopt);
 
 }  // namespace kdrt

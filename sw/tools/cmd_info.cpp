@@ -115,6 +115,8 @@ int Run(const InfoArgs& args) {
   }
   std::printf(" bytes (splits and vertices in the format's width)\n");
   std::printf("minimal format  %s\n", req.MinimalFormat().c_str());
+  std::printf("minimal image   %s (the stored scene alone: the narrowest --image-format)\n",
+              req.MinimalImageFormat().c_str());
   std::printf("precision      for %llu %s (%llu hits in fp64); %s\n", static_cast<unsigned long long>(req.rays),
               args.rays.empty() ? "camera rays" : "rays", static_cast<unsigned long long>(req.hit_tests),
               LimitingCriteria(req).c_str());

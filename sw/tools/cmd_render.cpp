@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <unistd.h>
 
@@ -58,8 +59,13 @@ std::vector<Hit> TraceBatch(const PreparedScene& p, const ImageView& traced, con
 
 int Run(const RenderArgs& args) {
   const fp::Format format = fp::ParseFormat(args.format);
+  // A narrower image than the datapath (splits and vertices stored in fewer
+  // bits, loaded exactly): its format decides the storage criteria of the
+  // precision check.
+  std::optional<fp::Format> narrow_image;
   if (args.image_format != "native" && args.image_format != "fp32") {
-    throw InputError("--image-format " + args.image_format + ": expected native or fp32");
+    narrow_image = fp::ParseFormat(args.image_format);
+    CheckImageFormat(format, *narrow_image);
   }
   TraceOptions to;
   to.format = format;
@@ -75,7 +81,9 @@ int Run(const RenderArgs& args) {
   // The image the tracer reads: the format's own packed image (splits and
   // vertices rounded once, as a load from the fp32 image rounds them: the
   // hits are the same), or the fp32 image.
-  const img::ImageLayout layout = args.image_format == "fp32" ? img::ImageLayout{} : LayoutFor(format);
+  const img::ImageLayout layout = args.image_format == "fp32" ? img::ImageLayout{}
+                                  : narrow_image              ? LayoutFor(*narrow_image)
+                                                              : LayoutFor(format);
   const std::vector<uint8_t> packed = layout.IsFp32() ? std::vector<uint8_t>{} : RepackImage(image, layout);
   const ImageView traced = layout.IsFp32() ? image : ImageView(packed);
 
@@ -86,7 +94,7 @@ int Run(const RenderArgs& args) {
 
   to.query = ray_set.query;
   to.progress = !args.quiet && isatty(STDERR_FILENO) && rays.size() >= 1000000;
-  const PrecisionCheck check = CheckPrecision(image, rays, to.format, args.strict, args.threads);
+  const PrecisionCheck check = CheckPrecision(image, rays, to.format, args.strict, args.threads, "", narrow_image);
   AccelTotals ts;
   const std::vector<Hit> hits = TraceBatch(p, traced, rays, to, &ts);
 
@@ -123,7 +131,7 @@ int Run(const RenderArgs& args) {
     const PassTracer trace = [&](const RayPass& pass, nlohmann::json* stats) {
       // Secondary rays start on surfaces: they get their own precision check.
       for (const std::string& w :
-           CheckPrecision(image, pass.rays, to.format, args.strict, args.threads, pass.name).warnings) {
+           CheckPrecision(image, pass.rays, to.format, args.strict, args.threads, pass.name, narrow_image).warnings) {
         j["warnings"].push_back(w);
       }
       TraceOptions po = to;
@@ -203,7 +211,9 @@ Runner AddRenderCommand(CLI::App& app) {
                   "--format. kdrt sim --trav-format runs the RTL core with that traversal (at most fp32)");
   cmd->add_option("--image-format", args->image_format,
                   "Memory image the tracer reads: native (splits and vertices stored in --format's width; "
-                  "fp64 reads the fp32 image) or fp32 (every format rounds on load). The hits are the same")
+                  "fp64 reads the fp32 image), fp32 (every format rounds on load; the hits are native's), or a "
+                  "format narrower than --format (at most its exponent and mantissa bits: splits and vertices "
+                  "stored in fewer bits and loaded exactly, the arithmetic in --format; kdrt sim --image-format)")
       ->capture_default_str();
   cmd->add_flag("--strict", args->strict,
                 "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");

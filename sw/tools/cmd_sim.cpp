@@ -11,6 +11,7 @@
 
 #include <cinttypes>
 #include <cstdio>
+#include <optional>
 
 #include "common/error.h"
 #include "fp/format.h"
@@ -37,6 +38,7 @@ struct SimArgs {
   std::string json;
   std::string format = "fp32";
   std::string trav_format;  // empty: --format
+  std::string image_format;  // empty: --format
   std::string rays;
   std::string camera;
   sim::RunOptions run;
@@ -77,10 +79,17 @@ int RunSim(SimArgs args) {
     CheckTravFormat(format, trav);
     sim::OverrideTravFormat(format, trav, &args.overrides);
   }
+  // A core reading a narrower image (rt_core ImgE, ImgM): splits and
+  // vertices stored in fewer bits, widened exactly on load.
+  const fp::Format image_format = args.image_format.empty() ? format : fp::ParseFormat(args.image_format);
+  sim::OverrideImageFormat(format, image_format, &args.overrides);
+  const std::optional<fp::Format> narrow_image =
+      image_format == format ? std::nullopt : std::optional<fp::Format>(image_format);
   const PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);
-  // The core reads the image of its own format (docs/memory-image.md).
-  const std::vector<uint8_t> core_image = sim::CoreImage(p.image, format);
+  // The core reads the image of its own format, or of --image-format
+  // (docs/memory-image.md).
+  const std::vector<uint8_t> core_image = sim::CoreImage(p.image, image_format);
   const sim::SceneRequirements req = sim::DeriveRequirements(ImageView(core_image));
   const sim::ConfigChoice choice =
       sim::ChooseConfig(format, req, args.overrides, args.run.mem_size, args.run.allow_overflow);
@@ -106,7 +115,7 @@ int RunSim(SimArgs args) {
                      std::to_string(ray_set.rays.size()) + " rays");
   }
   // Before a model is built or run: --strict refuses here, with nothing written.
-  const PrecisionCheck check = CheckPrecision(image, ray_set.rays, format, args.strict, 0);
+  const PrecisionCheck check = CheckPrecision(image, ray_set.rays, format, args.strict, 0, "", narrow_image);
   const bool rtl = args.model != "fast", fast = args.model != "rtl";
   if (rtl && !loc.built) sim::BuildModel(choice, loc);
 
@@ -163,7 +172,8 @@ int RunSim(SimArgs args) {
     pass_run.trace_ray = -1;
     const PassTracer trace = [&](const RayPass& pass, nlohmann::json* stats) {
       if (!args.quiet) std::fprintf(stderr, "kdrt sim: %s pass, %zu rays\n", pass.name.c_str(), pass.rays.size());
-      for (const std::string& w : CheckPrecision(image, pass.rays, format, args.strict, 0, pass.name).warnings) {
+      for (const std::string& w :
+           CheckPrecision(image, pass.rays, format, args.strict, 0, pass.name, narrow_image).warnings) {
         report["warnings"].push_back(w);
       }
       sim::ModelRun r = run_model(pass.rays, pass_run, "", pass.query);
@@ -225,6 +235,10 @@ Runner AddSimCommand(CLI::App& app) {
                   "Number format of the core's traversal datapath (ray setup's 1/d, box clip, split distances), "
                   "at least --format's bits and at most fp32; cell intervals and stacks stay in --format "
                   "(kdrt render --trav-format)");
+  cmd->add_option("--image-format", args->image_format,
+                  "Number format of the memory image the core reads (splits and vertices), at most --format's "
+                  "bits: stored narrower, widened exactly on load, computed in --format (kdrt render "
+                  "--image-format); default: --format");
   cmd->add_option("--rays", args->rays, "Trace this ray file (KDRTRAYS) instead of the camera");
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
   sim::AddRunOptions(*cmd, args->run);

@@ -102,9 +102,14 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, co
   h.tri_count = static_cast<uint32_t>(scene.triangles.size());
   h.max_depth = tree.stats.max_depth;
   h.max_leaf_prims = tree.stats.max_leaf_prims;
+  // A packed image holds the scene box as the format rounds it, like the
+  // splits and vertices: a datapath wider than the image (--image-format)
+  // loads it exactly and clips to the box of the stored triangles (rounding
+  // is monotone, so they stay inside). A datapath of the image's own format
+  // loads the same value from either.
   for (int i = 0; i < 3; ++i) {
-    h.bounds_min[i] = tree.bounds_min[i];
-    h.bounds_max[i] = tree.bounds_max[i];
+    h.bounds_min[i] = LoadedFloat(layout, StoredBits(layout, tree.bounds_min[i]));
+    h.bounds_max[i] = LoadedFloat(layout, StoredBits(layout, tree.bounds_max[i]));
     h.frame_origin[i] = frame.origin[i];
   }
   h.frame_scale_log2 = frame.scale_log2;

@@ -24,16 +24,25 @@ std::string PrecisionRequirement::MinimalFormat() const {
   return "e" + std::to_string(min_exponent_bits) + "m" + std::to_string(min_mantissa_bits);
 }
 
-std::string PrecisionRequirement::Shortfall(const fp::Format& f) const {
-  if (Meets(f)) return "";
+std::string PrecisionRequirement::MinimalImageFormat() const {
+  return "e" + std::to_string(min_image_exponent_bits) + "m" + std::to_string(min_image_mantissa_bits);
+}
+
+std::string PrecisionRequirement::Shortfall(const fp::Format& f, const fp::Format& image) const {
   std::string what;
   for (const PrecisionCriterion& c : criteria) {
-    const uint64_t n = c.Failing(c.exponent ? f.e : f.m);
+    const fp::Format& by = c.storage ? image : f;
+    const uint64_t n = c.Failing(c.exponent ? by.e : by.m);
     if (n == 0) continue;
     what += (what.empty() ? "" : "; ") + std::to_string(n) + " of " + std::to_string(c.checked) + " " + c.items +
             " " + c.breaks;
   }
-  return f.Name() + " cannot represent this scene: " + what + " (minimal format " + MinimalFormat() + ")";
+  if (what.empty()) return "";
+  if (image == f) {
+    return f.Name() + " cannot represent this scene: " + what + " (minimal format " + MinimalFormat() + ")";
+  }
+  return f.Name() + " with its image in " + image.Name() + " cannot represent this scene: " + what +
+         " (minimal format " + MinimalFormat() + ", minimal image format " + MinimalImageFormat() + ")";
 }
 
 nlohmann::json PrecisionRequirement::Json() const {
@@ -55,6 +64,9 @@ nlohmann::json PrecisionRequirement::Json() const {
   return {{"min_exponent_bits", min_exponent_bits},
           {"min_mantissa_bits", min_mantissa_bits},
           {"minimal_format", MinimalFormat()},
+          {"min_image_exponent_bits", min_image_exponent_bits},
+          {"min_image_mantissa_bits", min_image_mantissa_bits},
+          {"minimal_image_format", MinimalImageFormat()},
           {"rays", rays},
           {"hit_tests", hit_tests},
           {"criteria", crit}};
@@ -80,6 +92,9 @@ PrecisionRequirement AnalyzePrecision(const ImageView& image, const std::vector<
   for (const PrecisionCriterion& c : req.criteria) {
     int& min_bits = c.exponent ? req.min_exponent_bits : req.min_mantissa_bits;
     min_bits = std::max(min_bits, c.MinBits());
+    if (!c.storage) continue;
+    int& image_bits = c.exponent ? req.min_image_exponent_bits : req.min_image_mantissa_bits;
+    image_bits = std::max(image_bits, c.MinBits());
   }
   return req;
 }

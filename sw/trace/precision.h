@@ -29,6 +29,10 @@ struct PrecisionCriterion {
   bool exponent;       // needs exponent bits (else mantissa bits)
   std::string items;   // what is counted: "vertices", "triangles", ...
   std::string breaks;  // what happens to a failing item, for messages
+  // A property of the stored scene (vertices, splits), decided by the image's
+  // format; the others are decided by the datapath's arithmetic. The two
+  // differ when the image is narrower than the datapath (--image-format).
+  bool storage = false;
   uint64_t checked = 0;
   // needing[b]: items that need exactly b bits (b = 0: nothing to check).
   std::vector<uint64_t> needing = std::vector<uint64_t>(64, 0);
@@ -47,14 +51,23 @@ struct PrecisionRequirement {
   uint64_t hit_tests = 0;  // of those, rays with a hit in fp64
   int min_exponent_bits = 2;
   int min_mantissa_bits = 1;
+  // The same over the storage criteria alone: the narrowest image a datapath
+  // that meets the rest may read.
+  int min_image_exponent_bits = 2;
+  int min_image_mantissa_bits = 1;
 
-  std::string MinimalFormat() const;  // "eXmY"
+  std::string MinimalFormat() const;       // "eXmY"
+  std::string MinimalImageFormat() const;  // "eXmY"
   bool Meets(const fp::Format& f) const { return f.e >= min_exponent_bits && f.m >= min_mantissa_bits; }
   // "" when `f` meets the requirement, else "<f> cannot represent this scene:
-  // <n of N items break, per criterion> (minimal format eXmY)".
-  std::string Shortfall(const fp::Format& f) const;
-  // {"min_exponent_bits", "min_mantissa_bits", "minimal_format", "rays",
-  //  "hit_tests", "criteria": {name: {...}}}
+  // <n of N items break, per criterion> (minimal format eXmY)". With `image`
+  // (the format of a narrower image than the datapath's `f`) the storage
+  // criteria are checked against `image`, the others against `f`.
+  std::string Shortfall(const fp::Format& f) const { return Shortfall(f, f); }
+  std::string Shortfall(const fp::Format& f, const fp::Format& image) const;
+  // {"min_exponent_bits", "min_mantissa_bits", "minimal_format",
+  //  "min_image_exponent_bits", "min_image_mantissa_bits",
+  //  "minimal_image_format", "rays", "hit_tests", "criteria": {name: {...}}}
   nlohmann::json Json() const;
 };
 

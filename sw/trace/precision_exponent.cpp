@@ -83,7 +83,8 @@ bool BoxExit(const Ray& ray, const img::Header& h, double* t1_out) {
 }  // namespace
 
 void AddImageExponentCriteria(const ImageView& image, std::vector<PrecisionCriterion>* out) {
-  PrecisionCriterion coords{"coordinate_overflow", true, "triangles", "have a vertex coordinate that overflows"};
+  PrecisionCriterion coords{"coordinate_overflow", true, "triangles", "have a vertex coordinate that overflows",
+                                true};
   PrecisionCriterion under{"triangle_underflow", true, "triangles",
                            "have a determinant (twice the area) that flushes to zero: no ray can hit them"};
   PrecisionCriterion over{"triangle_overflow", true, "triangles", "have a determinant (twice the area) that overflows"};

@@ -80,7 +80,7 @@ uint32_t KeyBits(float x) {
 // vertex_collapse: distinct vertex positions that some width below 23 bits
 // rounds onto the same point as another distinct position.
 PrecisionCriterion VertexCollapse(const ImageView& image) {
-  PrecisionCriterion c{"vertex_collapse", false, "vertices", "collapse onto another vertex"};
+  PrecisionCriterion c{"vertex_collapse", false, "vertices", "collapse onto another vertex", true};
   std::vector<Key> verts;
   for (uint32_t t = 0; t < image.header().tri_count; ++t) {
     const img::TriangleRecord tri = image.triangle(t);
@@ -138,7 +138,7 @@ int BitsKeepingArea(Load load) {
 // degenerate_triangles: triangles with area in the image whose rounded
 // vertices are collinear at some width below 23 bits.
 PrecisionCriterion DegenerateTriangles(const ImageView& image, int threads) {
-  PrecisionCriterion c{"degenerate_triangles", false, "triangles", "become degenerate (no area)"};
+  PrecisionCriterion c{"degenerate_triangles", false, "triangles", "become degenerate (no area)", true};
   const uint32_t n = image.header().tri_count;
   std::vector<int> needs(n, -1);  // -1: degenerate in the image, not checked
   ParallelFor(n, threads, [&](size_t t) {
@@ -165,7 +165,7 @@ PrecisionCriterion DegenerateTriangles(const ImageView& image, int threads) {
 // the guard of that argument (a mapping of the image that is not monotone
 // would break it).
 PrecisionCriterion SplitOrder(const ImageView& image) {
-  PrecisionCriterion c{"split_order", false, "split planes", "leave their cell"};
+  PrecisionCriterion c{"split_order", false, "split planes", "leave their cell", true};
   const img::Header& h = image.header();
   struct Cell {
     uint32_t node;

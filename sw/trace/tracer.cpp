@@ -77,6 +77,15 @@ void CheckTravFormat(const fp::Format& format, const fp::Format& trav) {
 
 void CheckTravFormat(const TraceOptions& options) { CheckTravFormat(options.format, TravFormat(options)); }
 
+void CheckImageFormat(const fp::Format& format, const fp::Format& image) {
+  if (image == format) return;
+  if (image.IsFp64() || image.e > format.e || image.m > format.m) {
+    throw InputError("image format " + image.Name() + " is wider than the datapath's " + format.Name() +
+                     ": an image narrower than the format (at most its exponent and mantissa bits) is loaded "
+                     "exactly; a wider one is not (kdrt render --image-format fp32 rounds it on every load)");
+  }
+}
+
 Hit TraceOne(const ImageView& image, const Ray& ray, const TraceOptions& options, RayCounters* counters,
              std::vector<uint32_t>* path) {
   return WithTraceArith(options, [&](const auto& at, const auto& ai, auto mixed) {

@@ -41,6 +41,10 @@ fp::Format TravFormat(const TraceOptions& options);
 // works on the test's ray widened exactly.
 void CheckTravFormat(const fp::Format& format, const fp::Format& trav);
 void CheckTravFormat(const TraceOptions& options);
+// Throws InputError unless `format`, the datapath's, holds every value of the
+// image's format `image` (a narrower image: splits and vertices stored in
+// fewer bits, loaded exactly; --image-format).
+void CheckImageFormat(const fp::Format& format, const fp::Format& image);
 
 struct TraceStats {
   RayCounters totals;

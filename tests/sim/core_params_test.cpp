@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/error.h"
 #include "sim/core_params.h"
 
 namespace kdrt::sim {
@@ -44,18 +45,42 @@ TEST(CoreParams, TableDefaultsAreTheRtlDefaults) {
 
 TEST(CoreParams, KeyNamesEveryParameter) {
   CoreConfig c = DefaultConfig(fp::kFp32);
-  EXPECT_EQ(c.Key(), "e8m23v8.23-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4");
-  EXPECT_EQ(DefaultConfig(fp::kFp16).Key(), "e5m10v5.10-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4");
+  EXPECT_EQ(DefaultConfig(fp::kFp16).Key(), "e5m10v5.10p5.10-t32-s32-n24-i24-a28-c64.64.64-r16-g8-w4");
   c[kTriCacheLines] = 128;
-  EXPECT_EQ(c.Key(), "e8m23v8.23-t32-s32-n24-i24-a28-c64.64.128-r16-g8-w4");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t32-s32-n24-i24-a28-c64.64.128-r16-g8-w4");
   EXPECT_EQ(c.Json()["TriCacheLines"], 128);
   EXPECT_EQ(c.VerilatorDefines()[kTriCacheLines], "-GTriCacheLines=128");
   c[kCacheTargets] = 1;
-  EXPECT_EQ(c.Key(), "e8m23v8.23-t32-s32-n24-i24-a28-c64.64.128-r16-g1-w4");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t32-s32-n24-i24-a28-c64.64.128-r16-g1-w4");
   EXPECT_EQ(c.VerilatorDefines()[kCacheTargets], "-GCacheTargets=1");
   c[kCacheWays] = 2;
-  EXPECT_EQ(c.Key(), "e8m23v8.23-t32-s32-n24-i24-a28-c64.64.128-r16-g1-w2");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t32-s32-n24-i24-a28-c64.64.128-r16-g1-w2");
   EXPECT_EQ(c.VerilatorDefines().back(), "-GCacheWays=2");
+}
+
+// --image-format: a narrower image is its own model (the key's p part); the
+// format's own image changes nothing; a wider one is refused.
+TEST(CoreParams, ImageFormatOverridesImgEAndImgM) {
+  ConfigOverrides ov;
+  OverrideImageFormat(fp::kFp32, fp::kFp32, &ov);
+  EXPECT_EQ(ov.value[kImgE], 0);
+  EXPECT_EQ(ov.value[kImgM], 0);
+  OverrideImageFormat(fp::kFp32, fp::kBf16, &ov);
+  EXPECT_EQ(ov.value[kImgE], 8);
+  EXPECT_EQ(ov.value[kImgM], 7);
+  SceneRequirements req;
+  const ConfigChoice c = ChooseConfig(fp::kFp32, req, ov, 0, false);
+  EXPECT_FALSE(c.prebuilt);
+  EXPECT_EQ(c.config.ImageFormat(), fp::kBf16);
+  EXPECT_EQ(c.config.Format(), fp::kFp32);
+  EXPECT_NE(c.config.Key().find("p8.7-"), std::string::npos) << c.config.Key();
+  ConfigOverrides bad;
+  EXPECT_THROW(OverrideImageFormat(fp::kFp16, fp::kBf16, &bad), InputError);  // more exponent bits
+  EXPECT_THROW(OverrideImageFormat(fp::kBf16, fp::kFp32, &bad), InputError);
+  CoreConfig wider = DefaultConfig(fp::kFp16);
+  wider[kImgM] = 23;
+  EXPECT_THROW(CheckConfigCovers(wider, req, 1u << 28, false), InputError);
 }
 
 TEST(CoreParams, PrebuiltModelsAreBuiltWithTheDefaults) {

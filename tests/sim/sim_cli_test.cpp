@@ -483,6 +483,53 @@ TEST_F(SimCli, WiderTraversalRunsInTheRtl) {
   }
 }
 
+// --image-format on kdrt sim: an fp32 core reading a bf16 image (rt_core
+// ImgE, ImgM: splits and vertices stored in 16 bits, widened exactly on
+// load), its own model. Its hit records are kdrt render --image-format bf16's
+// bit for bit (the harness checks every ray), they differ from the fp32
+// image's (the geometry moved), it reads fewer bytes than the fp32 core, and
+// the fast model follows it cycle for cycle. An image wider than the core's
+// format is refused with nothing written.
+TEST_F(SimCli, NarrowerImageRunsInTheRtl) {
+  const std::string common = "gen:balls:2000 --res 24x24 -q";
+  const RunResult sim = RunKdrt("sim " + common + " --model both --image-format bf16 -o " + Path("a.png") +
+                                " --hits " + Path("a.exr") + " --json " + Path("a.json"));
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  ASSERT_EQ(RunKdrt("render " + common + " --image-format bf16 -o " + Path("r.png") + " --hits " + Path("r.exr"))
+                .exit_code,
+            0);
+  ExpectSameHitBuffers(Path("a.exr"), Path("r.exr"));
+  ASSERT_EQ(RunKdrt("sim " + common + " -o " + Path("b.png") + " --hits " + Path("b.exr") + " --json " +
+                    Path("b.json"))
+                .exit_code,
+            0);
+  const nlohmann::json a = ReadJson(Path("a.json")), b = ReadJson(Path("b.json"));
+  EXPECT_EQ(a["model"]["E"], 8);
+  EXPECT_EQ(a["model"]["M"], 23);
+  EXPECT_EQ(a["model"]["ImgE"], 8);
+  EXPECT_EQ(a["model"]["ImgM"], 7);
+  EXPECT_EQ(b["model"]["ImgM"], 23);
+  EXPECT_EQ(a["image_format"], "bf16");
+  EXPECT_EQ(a["format"], "fp32");
+  EXPECT_EQ(a["fast"]["error"].get<double>(), 0.0);
+  EXPECT_LT(a["requirements"]["image_bytes"].get<double>(), b["requirements"]["image_bytes"].get<double>());
+  EXPECT_LT(a["memory"]["bytes_read"].get<double>(), b["memory"]["bytes_read"].get<double>());
+  // The hits moved with the geometry: some t differs from the fp32 image's.
+  int w = 0, h = 0;
+  const std::vector<Hit> ha = ReadHitBuffer(Path("a.exr"), &w, &h), hb = ReadHitBuffer(Path("b.exr"), &w, &h);
+  ASSERT_EQ(ha.size(), hb.size());
+  size_t moved = 0;
+  for (size_t i = 0; i < ha.size(); ++i) moved += fp::BitsOf(ha[i].t) != fp::BitsOf(hb[i].t);
+  EXPECT_GT(moved, 0u);
+  for (const std::string& bad : {std::string("--format fp16 --image-format bf16"),
+                                 std::string("--format bf16 --image-format fp32")}) {
+    const RunResult r = RunKdrt("sim " + common + " " + bad + " -o " + Path("c.png"));
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_NE(r.output.find("is wider than the datapath's"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(Path("c.png"))) << bad;
+  }
+}
+
 // The SystemC top ticks the same core and memory model: same hits, same cycles.
 TEST_F(SimCli, SystemCLoopGivesTheSameCyclesAndHits) {
   const std::string common = "gen:tetra:300 --res 12x12 --format bf16 -o " + Path("x.png");

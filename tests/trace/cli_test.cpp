@@ -245,6 +245,25 @@ TEST_F(Cli, ATreeAPackedFormatCannotHoldIsSaid) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
+// --image-format F narrower than --format: the image stores splits and
+// vertices in F, the arithmetic stays --format's. A wider image is refused
+// with nothing written.
+TEST_F(Cli, NarrowerImageFormat) {
+  RunResult r = RunKdrt("render gen:balls:800 --res 16x16 --image-format bf16 -o " + Path("a.png") + " --json " +
+                        Path("a.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(Path("a.json")));
+  EXPECT_EQ(j["format"], "fp32");
+  EXPECT_EQ(j["image_format"], "bf16");
+  EXPECT_LT(j["image_bytes"].get<uint64_t>(), j["fp32_image_bytes"].get<uint64_t>());
+  EXPECT_GT(j["hits"].get<int>(), 0);
+  const size_t files = FileCount();
+  r = RunKdrt("render gen:balls:800 --res 16x16 --format fp16 --image-format bf16 -o " + Path("b.png"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("image format bf16 is wider than the datapath's fp16"), std::string::npos) << r.output;
+  EXPECT_EQ(FileCount(), files);
+}
+
 TEST_F(Cli, Fp64RendersWithoutWarnings) {
   const RunResult r = RunKdrt("render gen:balls:800 --res 32x32 --format fp64 -o " + Path("a.png") + " --json " +
                               Path("a.json"));
@@ -357,6 +376,10 @@ TEST_F(Cli, InfoPrintsTheMinimalFormat) {
   EXPECT_EQ(p["minimal_format"], "e" + std::to_string(p["min_exponent_bits"].get<int>()) + "m" +
                                      std::to_string(p["min_mantissa_bits"].get<int>()));
   EXPECT_GT(p["min_mantissa_bits"].get<int>(), fp::kFp24.m);
+  EXPECT_NE(r.output.find("minimal image   " + p["minimal_image_format"].get<std::string>() + " "),
+            std::string::npos)
+      << r.output;
+  EXPECT_LE(p["min_image_mantissa_bits"].get<int>(), p["min_mantissa_bits"].get<int>());
   EXPECT_EQ(p["rays"], m.rays.size());
   EXPECT_GT(p["criteria"]["vertex_collapse"]["failing"]["fp16"].get<int>(), 0);
   EXPECT_LE(p["criteria"]["vertex_collapse"]["failing"]["fp16"], p["criteria"]["vertex_collapse"]["checked"]);

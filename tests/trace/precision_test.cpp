@@ -113,6 +113,39 @@ TEST(Precision, SphereInAStadiumNeedsMoreThanFp16AndBf16) {
   ExpectMonotone(req);
 }
 
+// A datapath reading a narrower image (--image-format): the storage criteria
+// (what happens to stored vertices and splits) are checked against the
+// image's format, the rest against the datapath's. fp32 arithmetic cannot
+// give back vertices that collapsed in a bf16 image, and the tracer shows
+// it; an fp16 image of the unit sphere is enough for fp32 arithmetic.
+TEST(Precision, ANarrowerImageIsCheckedByItsStorageCriteria) {
+  std::vector<std::string> storage;
+  const testing::MeshAndRays stadium = testing::SphereInStadium(1e5);
+  Prepared p(stadium.scene);
+  const PrecisionRequirement req = AnalyzePrecision(p.view(), stadium.rays, 2);
+  for (const PrecisionCriterion& c : req.criteria) {
+    if (c.storage) storage.push_back(c.name);
+  }
+  EXPECT_EQ(storage, (std::vector<std::string>{"coordinate_overflow", "vertex_collapse", "degenerate_triangles",
+                                               "split_order"}));
+  EXPECT_GT(req.min_image_mantissa_bits, fp::kBf16.m);
+  EXPECT_LE(req.min_image_mantissa_bits, req.min_mantissa_bits);
+  EXPECT_EQ(req.Shortfall(fp::kFp32, fp::kFp32), "");
+  const std::string bf16 = req.Shortfall(fp::kFp32, fp::kBf16);
+  EXPECT_EQ(bf16.rfind("fp32 with its image in bf16 cannot represent this scene: ", 0), 0u) << bf16;
+  EXPECT_NE(bf16.find("vertices collapse onto another vertex"), std::string::npos) << bf16;
+  EXPECT_NE(bf16.find("minimal image format e"), std::string::npos) << bf16;
+  const std::vector<uint8_t> packed = RepackImage(p.view(), LayoutFor(fp::kBf16));
+  EXPECT_GT(CountMisses(ImageView(packed), stadium.rays, fp::kFp32), stadium.rays.size() / 2);
+
+  const testing::MeshAndRays sphere = MovedSphere(0, 1);
+  Prepared q(sphere.scene);
+  const PrecisionRequirement unit = AnalyzePrecision(q.view(), sphere.rays, 2);
+  EXPECT_EQ(unit.Shortfall(fp::kFp32, fp::kFp16), "");
+  const std::vector<uint8_t> fp16 = RepackImage(q.view(), LayoutFor(fp::kFp16));
+  EXPECT_EQ(CountMisses(ImageView(fp16), sphere.rays, fp::kFp32), 0u);
+}
+
 // Offsets and scales that broke the world-space datapath (1e5 away: fp16,
 // bf16 and fp24 missed; scaled by 1e-15 or 1e15: the watertight test's
 // products under- or overflowed) are harmless in the image's frame: every
