@@ -234,11 +234,13 @@ std::vector<uint8_t> CoreImage(const std::vector<uint8_t>& fp32_image, fp::Forma
 }
 
 ModelRun Simulate(const std::vector<uint8_t>& fp32_image, const std::vector<Ray>& rays, fp::Format format,
-                  RunOptions run, Query query, std::optional<fp::Format> trav) {
-  const std::vector<uint8_t> image = CoreImage(fp32_image, format);
+                  RunOptions run, Query query, std::optional<fp::Format> trav,
+                  std::optional<fp::Format> image_format) {
+  const std::vector<uint8_t> image = CoreImage(fp32_image, image_format.value_or(format));
   const SceneRequirements req = DeriveRequirements(ImageView(image));
   ConfigOverrides ov;
   if (trav) OverrideTravFormat(format, *trav, &ov);
+  if (image_format) OverrideImageFormat(format, *image_format, &ov);
   const ConfigChoice choice = ChooseConfig(format, req, ov, run.mem_size, run.allow_overflow);
   const ModelLocation loc = LocateModel(choice);
   if (!loc.built) BuildModel(choice, loc);

@@ -61,7 +61,9 @@ std::vector<uint8_t> CoreImage(const std::vector<uint8_t>& fp32_image, fp::Forma
 // model of `format` that covers it (built when missing), and its run on the
 // image of its format (CoreImage of the fp32 `image`). `trav`: a core whose
 // traversal datapath is that wider format (rt_core TravE, TravM).
+// `image_format`: a core reading that narrower image (rt_core ImgE, ImgM).
 ModelRun Simulate(const std::vector<uint8_t>& image, const std::vector<Ray>& rays, fp::Format format,
-                  RunOptions run, Query query = Query::kClosest, std::optional<fp::Format> trav = std::nullopt);
+                  RunOptions run, Query query = Query::kClosest, std::optional<fp::Format> trav = std::nullopt,
+                  std::optional<fp::Format> image_format = std::nullopt);
 
 }  // namespace kdrt::sim

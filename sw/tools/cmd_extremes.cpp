@@ -30,6 +30,7 @@ struct ExtremesArgs {
   std::string formats;  // default: the presets
   std::string reference = "fp64";
   std::string trav_format;  // empty: each format traverses in itself
+  std::string datapath;     // empty: each format computes in itself; else each format is the image's
   std::string cases;    // a regular expression over the case names
   std::string json;
   bool reduced = false;
@@ -68,10 +69,17 @@ int Run(const ExtremesArgs& args) {
   const std::vector<fp::Format> formats = ParseFormats(args.formats);
   const fp::Format reference = fp::ParseFormat(args.reference);
   const std::regex pick(args.cases.empty() ? ".*" : args.cases);
+  // --datapath W: every listed format is the image's, W computes (the
+  // storage criteria of the precision check judged by the image's format).
+  std::optional<fp::Format> datapath;
+  if (!args.datapath.empty()) {
+    datapath = fp::ParseFormat(args.datapath);
+    for (const fp::Format& f : formats) CheckImageFormat(*datapath, f);
+  }
   std::optional<fp::Format> trav;
   if (!args.trav_format.empty()) {
     trav = fp::ParseFormat(args.trav_format);
-    for (const fp::Format& f : formats) CheckTravFormat(f, *trav);
+    for (const fp::Format& f : formats) CheckTravFormat(datapath.value_or(f), *trav);
     if (args.sim) sim::CheckRtlTravFormat(*trav);
   }
   std::vector<ExtremeCase> cases;
@@ -104,14 +112,19 @@ int Run(const ExtremesArgs& args) {
     if (!args.quiet) std::printf("%-34s %7zu %7s", c.name.c_str(), c.rays.size(), req.MinimalFormat().c_str());
     for (const fp::Format& f : formats) {
       TraceOptions fo = to;
-      fo.format = f;
+      fo.format = datapath.value_or(f);
       fo.trav_format = trav;
-      const std::vector<Hit> hits = TraceRays(image, c.rays, fo);
+      // With --datapath, f's packed image (its own format's is the same
+      // hits as the fp32 image's, so the fp32 image serves without it).
+      const std::vector<uint8_t> packed = datapath ? sim::CoreImage(p.image, f) : std::vector<uint8_t>{};
+      const std::vector<Hit> hits = TraceRays(datapath ? ImageView(packed) : image, c.rays, fo);
       Cell cell = Measure(c, hits, ref);
-      cell.warning = req.Shortfall(f);
+      cell.warning = req.Shortfall(fo.format, f);
       if (args.sim) {
         sim::RunOptions run;
-        const sim::ModelRun m = sim::Simulate(p.image, c.rays, f, run, Query::kClosest, trav);
+        const sim::ModelRun m =
+            datapath ? sim::Simulate(p.image, c.rays, *datapath, run, Query::kClosest, trav, f)
+                     : sim::Simulate(p.image, c.rays, f, run, Query::kClosest, trav);
         if (m.exit_code != 0) {
           throw InputError("kdrt sim failed on case '" + c.name + "' in " + f.Name() + " (exit " +
                            std::to_string(m.exit_code) + ")");
@@ -145,11 +158,16 @@ int Run(const ExtremesArgs& args) {
     if (trav) {
       std::printf("every format traversed in %s (--trav-format; the test in the format)\n", trav->Name().c_str());
     }
+    if (datapath) {
+      std::printf("every format is the image's, the datapath computes in %s (--datapath)\n",
+                  datapath->Name().c_str());
+    }
   }
   if (!args.json.empty()) {
     OutputSet outputs;
     nlohmann::json j = {{"command", "extremes"}, {"reference", reference.Name()}, {"cases", rows}};
     if (trav) j["trav_format"] = trav->Name();
+    if (datapath) j["datapath"] = datapath->Name();
     AddJsonOutput(outputs, args.json, j);
     outputs.Commit();
   }
@@ -167,6 +185,9 @@ Runner AddExtremesCommand(CLI::App& app) {
   cmd->add_option("--trav-format", args->trav_format,
                   "Traverse in this format (at least every listed format's bits), test in each listed one; "
                   "with --sim, the RTL core with that traversal datapath (at most fp32)");
+  cmd->add_option("--datapath", args->datapath,
+                  "Compute in this format (at least every listed format's bits) and read each listed format's "
+                  "image (kdrt render --image-format); with --sim, the RTL core reading that image");
   cmd->add_option("--cases", args->cases, "Only the cases whose name matches this regular expression");
   cmd->add_option("--json", args->json, "Machine-readable results");
   cmd->add_flag("--reduced", args->reduced, "The smaller set `make test` runs");

@@ -8,6 +8,7 @@
 // A flush is only counted for values that carry a scene's scale (a
 // triangle's area, a hit distance): a tiny coordinate or edge value next to
 // large ones flushes harmlessly, it is below the rounding error already there.
+#include <algorithm>
 #include <cmath>
 
 #include "fp/ftz.h"
@@ -80,6 +81,29 @@ bool BoxExit(const Ray& ray, const img::Header& h, double* t1_out) {
   return t0 <= t1 && t1 > 0;
 }
 
+// Exponent bits for which the triangle keeps its area when the coordinates
+// below the smallest normal are stored as zero: a flushed coordinate is
+// harmless beside large ones, unless every coordinate that gives the
+// triangle its extent on some axis flushes (a needle of radius 1e-6 about an
+// axis). Fewer bits flush more coordinates; counted from the most bits down,
+// so the count never grows with more bits.
+int BitsKeepingAreaAfterFlush(const img::TriangleRecord& t) {
+  const float* v[3] = {t.v0, t.v1, t.v2};
+  int first_safe = 0;  // from this many bits on, nothing flushes
+  for (const float* p : v) {
+    for (int i = 0; i < 3; ++i) first_safe = std::max(first_safe, BitsNotFlushing(p[i]));
+  }
+  for (int e = first_safe - 1; e >= 2; --e) {
+    const double min_normal = std::ldexp(1.0, 1 - Bias(e));
+    double q[3][3];
+    for (int k = 0; k < 3; ++k) {
+      for (int i = 0; i < 3; ++i) q[k][i] = std::fabs(double{v[k][i]}) < min_normal ? 0.0 : double{v[k][i]};
+    }
+    if (Collinear(q[0], q[1], q[2])) return e + 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 void AddImageExponentCriteria(const ImageView& image, std::vector<PrecisionCriterion>* out) {
@@ -88,6 +112,10 @@ void AddImageExponentCriteria(const ImageView& image, std::vector<PrecisionCrite
   PrecisionCriterion under{"triangle_underflow", true, "triangles",
                            "have a determinant (twice the area) that flushes to zero: no ray can hit them"};
   PrecisionCriterion over{"triangle_overflow", true, "triangles", "have a determinant (twice the area) that overflows"};
+  PrecisionCriterion flush{"coordinate_flush", true, "triangles",
+                           "become degenerate (no area) when their coordinates below the smallest normal flush to "
+                           "zero",
+                           true};
   for (uint32_t t = 0; t < image.header().tri_count; ++t) {
     const img::TriangleRecord tri = image.triangle(t);
     Need c;
@@ -100,8 +128,10 @@ void AddImageExponentCriteria(const ImageView& image, std::vector<PrecisionCrite
     o.Overflow(area2);
     under.Add(u.bits);
     over.Add(o.bits);
+    flush.Add(BitsKeepingAreaAfterFlush(tri));
   }
   out->push_back(coords);
+  out->push_back(flush);
   out->push_back(under);
   out->push_back(over);
 }

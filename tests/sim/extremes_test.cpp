@@ -65,6 +65,40 @@ TEST(Extremes, WiderTraversalLeavesNoHoleWithoutAWarning) {
   EXPECT_GE(checked, 40);
 }
 
+// An fp32 datapath reading each narrower preset's image (--datapath, model
+// only; kdrt sim --image-format is checked in sim_cli_test): the arithmetic
+// is fp32's, so no must-hit ray leaks wherever the stored scene suffices,
+// and the warnings name the image's format.
+TEST(Extremes, NarrowerImageLeavesNoHoleWithoutAWarning) {
+  const fs::path json = fs::temp_directory_path() / ("kdrt_extremes_img_" + std::to_string(getpid()) + ".json");
+  const testing::RunResult r =
+      testing::RunKdrt("extremes --reduced --formats fp24,bf16,fp16 --datapath fp32 -q --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream f(json);
+  const nlohmann::json j = nlohmann::json::parse(f);
+  fs::remove(json);
+  EXPECT_EQ(j["datapath"], "fp32");
+  ASSERT_GE(j["cases"].size(), 20u);
+  int checked = 0, warned = 0;
+  for (const nlohmann::json& c : j["cases"]) {
+    for (const auto& [format, cell] : c["formats"].items()) {
+      const std::string warning = cell["warning"];
+      if (!warning.empty()) {
+        EXPECT_EQ(warning.rfind("fp32 with its image in " + format + " cannot represent", 0), 0u) << warning;
+        ++warned;
+        continue;
+      }
+      EXPECT_EQ(cell["holes"].get<int>(), 0) << c["case"] << " " << format << " image, fp32 datapath";
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 40);
+  EXPECT_GT(warned, 0);
+  const testing::RunResult bad = testing::RunKdrt("extremes --reduced --formats bf16 --datapath fp16 -q");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("image format bf16 is wider than the datapath's fp16"), std::string::npos) << bad.output;
+}
+
 TEST(Extremes, RefusesATraversalFormatNarrowerThanTheTest) {
   const testing::RunResult r = testing::RunKdrt("extremes --reduced --formats fp32 --trav-format fp16 -q");
   EXPECT_NE(r.exit_code, 0);

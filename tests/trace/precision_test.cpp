@@ -126,8 +126,8 @@ TEST(Precision, ANarrowerImageIsCheckedByItsStorageCriteria) {
   for (const PrecisionCriterion& c : req.criteria) {
     if (c.storage) storage.push_back(c.name);
   }
-  EXPECT_EQ(storage, (std::vector<std::string>{"coordinate_overflow", "vertex_collapse", "degenerate_triangles",
-                                               "split_order"}));
+  EXPECT_EQ(storage, (std::vector<std::string>{"coordinate_overflow", "coordinate_flush", "vertex_collapse",
+                                               "degenerate_triangles", "split_order"}));
   EXPECT_GT(req.min_image_mantissa_bits, fp::kBf16.m);
   EXPECT_LE(req.min_image_mantissa_bits, req.min_mantissa_bits);
   EXPECT_EQ(req.Shortfall(fp::kFp32, fp::kFp32), "");
