@@ -37,6 +37,8 @@ PARAMS = {
     "mem_bw": "--mem-bw",
     "cores": "--cores",
     "l2_kb": "--l2-kb",
+    "trav_format": "--trav-format",
+    "image_format": "--image-format",
 }
 SPEC_KEYS = {"scenes", "formats", "res", "params", "model", "shade", "allow_overflow"}
 # What each point reports, from `kdrt sim --json`.

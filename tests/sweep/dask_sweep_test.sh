@@ -55,6 +55,24 @@ rows = {int(r["stack_depth"]): int(r["overflows"]) for r in csv.DictReader(open(
 assert rows[2] > 0 and rows[40] == 0, rows
 PY
 
+# Formats as parameters: an fp32 core reading a bf16 image reads fewer bytes
+# per ray than one reading the fp32 image (--image-format).
+cat > "$work/image.yaml" << 'SPEC'
+scenes: [gen:tree:300]
+res: 8x8
+model: fast
+params:
+  image_format: [fp32, bf16]
+SPEC
+"$kdrt" sweep "$work/image.yaml" -o "$work/image" --jobs 2 > /dev/null 2> "$work/image.err" ||
+  { cat "$work/image.err"; fail "image-format sweep"; }
+/usr/bin/python3 - "$work/image/sweep.csv" << 'PY' || fail "bytes_per_ray by image_format"
+import csv, sys
+rows = {r["image_format"]: float(r["bytes_per_ray"]) for r in csv.DictReader(open(sys.argv[1]))}
+assert rows["bf16"] < rows["fp32"], rows
+PY
+ls "$work/image/plots/"*image_format.svg > /dev/null || fail "no plot against image_format"
+
 # A Dask cluster on loopback.
 port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 dask-scheduler --host 127.0.0.1 --port "$port" --no-dashboard > "$work/scheduler.log" 2>&1 &
