@@ -66,6 +66,10 @@ int Run(const RenderArgs& args) {
   if (args.image_format != "native" && args.image_format != "fp32") {
     narrow_image = fp::ParseFormat(args.image_format);
     CheckImageFormat(format, *narrow_image);
+    if (!IsKdTree(args.scene.accel)) {
+      throw InputError("--image-format " + args.image_format + ": only the kd-tree's memory image has a format; "
+                       "--accel " + std::string(AccelKindName(args.scene.accel)) + " traces its own structure");
+    }
   }
   TraceOptions to;
   to.format = format;

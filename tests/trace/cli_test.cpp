@@ -262,6 +262,10 @@ TEST_F(Cli, NarrowerImageFormat) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("image format bf16 is wider than the datapath's fp16"), std::string::npos) << r.output;
   EXPECT_EQ(FileCount(), files);
+  r = RunKdrt("render gen:balls:800 --res 16x16 --accel grid --image-format bf16 -o " + Path("c.png"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("only the kd-tree's memory image has a format"), std::string::npos) << r.output;
+  EXPECT_EQ(FileCount(), files);
 }
 
 TEST_F(Cli, Fp64RendersWithoutWarnings) {
