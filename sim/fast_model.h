@@ -28,7 +28,7 @@
 namespace kdrt::sim {
 
 struct FastSpec {
-  const ImageView* image = nullptr;  // the image of the core's format
+  const ImageView* image = nullptr;  // the image the core reads (of ImageFormat())
   const std::vector<Ray>* rays = nullptr;
   Query query = Query::kClosest;
   CoreConfig config;

@@ -23,8 +23,8 @@ struct PrecisionCheck {
 // throws InputError(<text>) instead (the caller then writes nothing).
 // `rays_name` (e.g. "shadow", for a shaded frame's passes) is named in the
 // text when given. `image_format`, when given, is the format of the image the
-// datapath reads (narrower than `format`: --image-format): the storage
-// criteria are checked against it.
+// datapath reads (at most `format`'s bits: --image-format; `format` itself
+// changes nothing): the storage criteria are checked against it.
 PrecisionCheck CheckPrecision(const ImageView& image, const std::vector<Ray>& rays, const fp::Format& format,
                               bool strict, int threads, const std::string& rays_name = "",
                               std::optional<fp::Format> image_format = std::nullopt);

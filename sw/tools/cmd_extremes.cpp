@@ -122,9 +122,7 @@ int Run(const ExtremesArgs& args) {
       cell.warning = req.Shortfall(fo.format, f);
       if (args.sim) {
         sim::RunOptions run;
-        const sim::ModelRun m =
-            datapath ? sim::Simulate(p.image, c.rays, *datapath, run, Query::kClosest, trav, f)
-                     : sim::Simulate(p.image, c.rays, f, run, Query::kClosest, trav);
+        const sim::ModelRun m = sim::Simulate(p.image, c.rays, fo.format, run, Query::kClosest, trav, f);
         if (m.exit_code != 0) {
           throw InputError("kdrt sim failed on case '" + c.name + "' in " + f.Name() + " (exit " +
                            std::to_string(m.exit_code) + ")");

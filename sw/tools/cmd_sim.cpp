@@ -11,7 +11,6 @@
 
 #include <cinttypes>
 #include <cstdio>
-#include <optional>
 
 #include "common/error.h"
 #include "fp/format.h"
@@ -83,8 +82,6 @@ int RunSim(SimArgs args) {
   // vertices stored in fewer bits, widened exactly on load.
   const fp::Format image_format = args.image_format.empty() ? format : fp::ParseFormat(args.image_format);
   sim::OverrideImageFormat(format, image_format, &args.overrides);
-  const std::optional<fp::Format> narrow_image =
-      image_format == format ? std::nullopt : std::optional<fp::Format>(image_format);
   const PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);
   // The core reads the image of its own format, or of --image-format
@@ -115,7 +112,7 @@ int RunSim(SimArgs args) {
                      std::to_string(ray_set.rays.size()) + " rays");
   }
   // Before a model is built or run: --strict refuses here, with nothing written.
-  const PrecisionCheck check = CheckPrecision(image, ray_set.rays, format, args.strict, 0, "", narrow_image);
+  const PrecisionCheck check = CheckPrecision(image, ray_set.rays, format, args.strict, 0, "", image_format);
   const bool rtl = args.model != "fast", fast = args.model != "rtl";
   if (rtl && !loc.built) sim::BuildModel(choice, loc);
 
@@ -173,7 +170,7 @@ int RunSim(SimArgs args) {
     const PassTracer trace = [&](const RayPass& pass, nlohmann::json* stats) {
       if (!args.quiet) std::fprintf(stderr, "kdrt sim: %s pass, %zu rays\n", pass.name.c_str(), pass.rays.size());
       for (const std::string& w :
-           CheckPrecision(image, pass.rays, format, args.strict, 0, pass.name, narrow_image).warnings) {
+           CheckPrecision(image, pass.rays, format, args.strict, 0, pass.name, image_format).warnings) {
         report["warnings"].push_back(w);
       }
       sim::ModelRun r = run_model(pass.rays, pass_run, "", pass.query);

@@ -19,13 +19,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(Extremes, SimMatchesRenderAndNoHolesWithoutAWarning) {
-  const fs::path json = fs::temp_directory_path() / ("kdrt_extremes_" + std::to_string(getpid()) + ".json");
-  const testing::RunResult r = testing::RunKdrt("extremes --reduced --sim -q --json " + json.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+// Runs `kdrt extremes ARGS -q --json F` (expecting success) and returns F's
+// JSON, or no cases when it failed; `tag` keeps the file of each test apart.
+nlohmann::json RunExtremes(const std::string& args, const std::string& tag) {
+  const fs::path json = fs::temp_directory_path() / ("kdrt_extremes" + tag + "_" + std::to_string(getpid()) + ".json");
+  const testing::RunResult r = testing::RunKdrt("extremes " + args + " -q --json " + json.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  if (r.exit_code != 0) return {{"cases", nlohmann::json::array()}};
   std::ifstream f(json);
   const nlohmann::json j = nlohmann::json::parse(f);
   fs::remove(json);
+  return j;
+}
+
+TEST(Extremes, SimMatchesRenderAndNoHolesWithoutAWarning) {
+  const nlohmann::json j = RunExtremes("--reduced --sim", "");
   ASSERT_GE(j["cases"].size(), 20u);
   for (const nlohmann::json& c : j["cases"]) {
     const std::string name = c["case"];
@@ -45,13 +53,7 @@ TEST(Extremes, SimMatchesRenderAndNoHolesWithoutAWarning) {
 // slack covers the test's rounding, so no must-hit ray leaks where the
 // format suffices.
 TEST(Extremes, WiderTraversalLeavesNoHoleWithoutAWarning) {
-  const fs::path json = fs::temp_directory_path() / ("kdrt_extremes_trav_" + std::to_string(getpid()) + ".json");
-  const testing::RunResult r =
-      testing::RunKdrt("extremes --reduced --formats fp24,bf16,fp16 --trav-format fp32 -q --json " + json.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::ifstream f(json);
-  const nlohmann::json j = nlohmann::json::parse(f);
-  fs::remove(json);
+  const nlohmann::json j = RunExtremes("--reduced --formats fp24,bf16,fp16 --trav-format fp32", "_trav");
   EXPECT_EQ(j["trav_format"], "fp32");
   ASSERT_GE(j["cases"].size(), 20u);
   int checked = 0;
@@ -70,13 +72,7 @@ TEST(Extremes, WiderTraversalLeavesNoHoleWithoutAWarning) {
 // is fp32's, so no must-hit ray leaks wherever the stored scene suffices,
 // and the warnings name the image's format.
 TEST(Extremes, NarrowerImageLeavesNoHoleWithoutAWarning) {
-  const fs::path json = fs::temp_directory_path() / ("kdrt_extremes_img_" + std::to_string(getpid()) + ".json");
-  const testing::RunResult r =
-      testing::RunKdrt("extremes --reduced --formats fp24,bf16,fp16 --datapath fp32 -q --json " + json.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::ifstream f(json);
-  const nlohmann::json j = nlohmann::json::parse(f);
-  fs::remove(json);
+  const nlohmann::json j = RunExtremes("--reduced --formats fp24,bf16,fp16 --datapath fp32", "_img");
   EXPECT_EQ(j["datapath"], "fp32");
   ASSERT_GE(j["cases"].size(), 20u);
   int checked = 0, warned = 0;
