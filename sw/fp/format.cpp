@@ -1,15 +1,5 @@
-// The generic path: decode both operands exactly to double, compute there and
-// round once to (E, M).
-//
-// Why that is exact: for +, -, * and / of p-bit operands, computing the result
-// in a binary format with at least 2p+2 significand bits and then rounding it
-// to p bits gives the correctly rounded p-bit result (Figueroa, "When is
-// double rounding innocuous?", SIGNUM 1995). Here p = M+1 <= 24 and double has
-// 53 >= 2*24+2 = 50 bits. Double's exponent range also covers every sum,
-// product and quotient of operands with E <= 8 (magnitudes between 2^-254 and
-// 2^256), so the double result never overflows or becomes subnormal, and our
-// own rounding uses an unbounded exponent range before the FTZ/overflow rule,
-// exactly as the policy in format.h says.
+// The soft formats' out-of-line functions; the arithmetic itself is inline
+// in format.h.
 #include "fp/format.h"
 
 #include <cstdio>
@@ -64,78 +54,6 @@ std::vector<Format> Presets() {
 #define KDRT_PRESET_FORMAT(name, e, m) Format{e, m},
   return {KDRT_PRESET_LIST(KDRT_PRESET_FORMAT)};
 #undef KDRT_PRESET_FORMAT
-}
-
-double ToDouble(Format f, uint32_t x) {
-  x &= f.WidthMask();
-  const bool neg = SignBit(f, x);
-  const uint32_t exp = (x & f.ExpMask()) >> f.m;
-  const uint32_t mant = x & f.MantMask();
-  double mag;
-  if (exp == f.ExpAllOnes()) {
-    if (mant != 0) return std::numeric_limits<double>::quiet_NaN();
-    mag = std::numeric_limits<double>::infinity();
-  } else if (exp == 0) {
-    mag = 0.0;  // DAZ
-  } else {
-    mag = std::ldexp(static_cast<double>((1u << f.m) | mant),
-                     static_cast<int>(exp) - f.Bias() - f.m);
-  }
-  return neg ? -mag : mag;
-}
-
-uint32_t FromDouble(Format f, double x) {
-  uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  const bool neg = (bits >> 63) != 0;
-  const int dexp = static_cast<int>((bits >> 52) & 0x7FF);
-  const uint64_t frac = bits & ((uint64_t{1} << 52) - 1);
-  if (dexp == 0x7FF) return frac != 0 ? f.CanonicalNaN() : f.Inf(neg);
-  // A subnormal double is far below the smallest normal of any format here.
-  if (dexp == 0) return f.Zero(neg);
-
-  // Round the 53-bit significand to M+1 bits, ties to even.
-  const uint64_t sig = (uint64_t{1} << 52) | frac;
-  const int shift = 52 - f.m;
-  uint64_t kept = sig >> shift;
-  const uint64_t rest = sig & ((uint64_t{1} << shift) - 1);
-  const uint64_t half = uint64_t{1} << (shift - 1);
-  if (rest > half || (rest == half && (kept & 1) != 0)) ++kept;
-  int exp = dexp - 1023;
-  if ((kept >> (f.m + 1)) != 0) {  // rounding carried into a new bit
-    kept >>= 1;
-    ++exp;
-  }
-  const int biased = exp + f.Bias();
-  if (biased <= 0) return f.Zero(neg);                                    // FTZ
-  if (biased >= static_cast<int>(f.ExpAllOnes())) return f.Inf(neg);  // overflow
-  return f.Zero(neg) | (static_cast<uint32_t>(biased) << f.m) |
-         (static_cast<uint32_t>(kept) & f.MantMask());
-}
-
-uint32_t FromF32Bits(Format f, uint32_t bits) {
-  if ((bits & 0x7F800000u) == 0) return f.Zero((bits >> 31) != 0);  // DAZ
-  return FromDouble(f, static_cast<double>(FloatOf(bits)));
-}
-
-uint32_t FromFloat(Format f, float x) { return FromF32Bits(f, BitsOf(x)); }
-
-float ToFloat(Format f, uint32_t x) {
-  if (IsNaN(f, x)) return FloatOf(0x7FC00000u);
-  return static_cast<float>(ToDouble(f, x));  // exact: E <= 8, M <= 23
-}
-
-uint32_t Add(Format f, uint32_t a, uint32_t b) {
-  return FromDouble(f, ToDouble(f, a) + ToDouble(f, b));
-}
-uint32_t Sub(Format f, uint32_t a, uint32_t b) {
-  return FromDouble(f, ToDouble(f, a) - ToDouble(f, b));
-}
-uint32_t Mul(Format f, uint32_t a, uint32_t b) {
-  return FromDouble(f, ToDouble(f, a) * ToDouble(f, b));
-}
-uint32_t Div(Format f, uint32_t a, uint32_t b) {
-  return FromDouble(f, ToDouble(f, a) / ToDouble(f, b));
 }
 
 namespace {
@@ -198,11 +116,13 @@ uint32_t NudgeDown(Format f, uint32_t x, uint32_t k) {
 uint32_t Ldexp(Format f, uint32_t x, int n) {
   // Exact in double (|n| is bounded by the callers' exponent fields), then
   // rounded once under the policy: only FTZ or overflow can change it.
-  return FromDouble(f, std::ldexp(ToDouble(f, x), n));
+  // A product with an exact power of two; |n| beyond double's normal range
+  // (no caller comes close) takes libm's ldexp.
+  if (n < -1022 || n > 1023) return FromDouble(f, std::ldexp(ToDouble(f, x), n));
+  const uint64_t scale_bits = static_cast<uint64_t>(n + 1023) << 52;
+  double scale;
+  std::memcpy(&scale, &scale_bits, sizeof scale);
+  return FromDouble(f, ToDouble(f, x) * scale);
 }
-
-bool Lt(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) < ToDouble(f, b); }
-bool Le(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) <= ToDouble(f, b); }
-bool Eq(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) == ToDouble(f, b); }
 
 }  // namespace kdrt::fp

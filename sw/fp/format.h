@@ -31,6 +31,14 @@
 #include <string>
 #include <vector>
 
+// The soft arithmetic below is forced inline: GCC left FromDouble out of
+// line in the triangle test, a call per operation.
+#if defined(__GNUC__)
+#define KDRT_FP_INLINE inline __attribute__((always_inline))
+#else
+#define KDRT_FP_INLINE inline
+#endif
+
 namespace kdrt::fp {
 
 // A soft format has 2 <= e <= 8 and 1 <= m <= 23; everything below (the
@@ -96,18 +104,11 @@ inline bool SignBit(Format f, uint32_t x) { return (x & f.SignMask()) != 0; }
 
 // Conversions. FromDouble/FromFloat/FromF32Bits round once (RNE, DAZ on the
 // input, FTZ and overflow as above). ToFloat/ToDouble are exact; a NaN becomes
-// 0x7FC00000 / the default quiet double NaN.
-uint32_t FromDouble(Format f, double x);
-uint32_t FromF32Bits(Format f, uint32_t bits);
-uint32_t FromFloat(Format f, float x);
-double ToDouble(Format f, uint32_t x);
-float ToFloat(Format f, uint32_t x);
+// 0x7FC00000 / the default quiet double NaN. The conversions, the
+// arithmetic (Add, Sub, Mul, Div) and the comparisons (Lt, Le, Eq: IEEE,
+// false when either operand is NaN, -0 == +0) are inline, further below.
 
-// Arithmetic, correctly rounded under the policy above.
-uint32_t Add(Format f, uint32_t a, uint32_t b);
-uint32_t Sub(Format f, uint32_t a, uint32_t b);
-uint32_t Mul(Format f, uint32_t a, uint32_t b);
-uint32_t Div(Format f, uint32_t a, uint32_t b);
+// Correctly rounded under the policy above.
 uint32_t Min(Format f, uint32_t a, uint32_t b);
 uint32_t Max(Format f, uint32_t a, uint32_t b);
 // Sign flips never flush a subnormal (they are bit operations, like the
@@ -126,11 +127,6 @@ uint32_t NudgeDown(Format f, uint32_t x, uint32_t k);
 // zero (FTZ) and one above it an infinity; zeros, infinities stay, a NaN is
 // the canonical NaN. (A subnormal x is a zero: DAZ.) rtl/fp_ldexp.sv.
 uint32_t Ldexp(Format f, uint32_t x, int n);
-// IEEE comparisons: false when either operand is NaN; -0 == +0.
-bool Lt(Format f, uint32_t a, uint32_t b);
-bool Le(Format f, uint32_t a, uint32_t b);
-bool Eq(Format f, uint32_t a, uint32_t b);
-
 inline uint32_t BitsOf(float x) {
   uint32_t u;
   std::memcpy(&u, &x, sizeof u);
@@ -141,6 +137,98 @@ inline float FloatOf(uint32_t u) {
   std::memcpy(&x, &u, sizeof x);
   return x;
 }
+
+// The arithmetic: decode both operands exactly to double, compute there and
+// round once to (E, M). Inline: as calls into format.cpp these were most of a
+// soft format's tracing time.
+//
+// Why that is exact: for +, -, * and / of p-bit operands, computing the result
+// in a binary format with at least 2p+2 significand bits and then rounding it
+// to p bits gives the correctly rounded p-bit result (Figueroa, "When is
+// double rounding innocuous?", SIGNUM 1995). Here p = M+1 <= 24 and double has
+// 53 >= 2*24+2 = 50 bits. Double's exponent range also covers every sum,
+// product and quotient of operands with E <= 8 (magnitudes between 2^-254 and
+// 2^256), so the double result never overflows or becomes subnormal, and our
+// own rounding uses an unbounded exponent range before the FTZ/overflow rule,
+// exactly as the policy above says.
+
+KDRT_FP_INLINE double ToDouble(Format f, uint32_t x) {
+  x &= f.WidthMask();
+  const bool neg = SignBit(f, x);
+  const uint32_t exp = (x & f.ExpMask()) >> f.m;
+  const uint32_t mant = x & f.MantMask();
+  double mag;
+  if (exp == f.ExpAllOnes()) {
+    if (mant != 0) return std::numeric_limits<double>::quiet_NaN();
+    mag = std::numeric_limits<double>::infinity();
+  } else if (exp == 0) {
+    mag = 0.0;  // DAZ
+  } else {
+    // The double with the same value, built from its fields: every normal
+    // value of an E <= 8 format is a normal double. (std::ldexp here was a
+    // libm call per operand.)
+    const uint64_t dexp = static_cast<uint64_t>(static_cast<int>(exp) - f.Bias() + 1023);
+    const uint64_t bits = (uint64_t{neg} << 63) | (dexp << 52) | (uint64_t{mant} << (52 - f.m));
+    double value;
+    std::memcpy(&value, &bits, sizeof value);
+    return value;
+  }
+  return neg ? -mag : mag;
+}
+
+KDRT_FP_INLINE uint32_t FromDouble(Format f, double x) {
+  uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const bool neg = (bits >> 63) != 0;
+  uint64_t mag = bits & ~(uint64_t{1} << 63);
+  if ((mag >> 52) == 0x7FF) return (mag << 12) != 0 ? f.CanonicalNaN() : f.Inf(neg);
+  // A subnormal double is far below the smallest normal of any format here.
+  if ((mag >> 52) == 0) return f.Zero(neg);
+
+  // Round the fraction to M bits, ties to even, on the encoding: adding
+  // half an ulp minus one plus the kept lsb and truncating rounds to
+  // nearest even; a carry out of the fraction steps the exponent, as
+  // rounding up to the next power of two does.
+  const int shift = 52 - f.m;
+  mag += (uint64_t{1} << (shift - 1)) - 1 + ((mag >> shift) & 1u);
+  const int biased = static_cast<int>(mag >> 52) - 1023 + f.Bias();
+  if (biased <= 0) return f.Zero(neg);                                    // FTZ
+  if (biased >= static_cast<int>(f.ExpAllOnes())) return f.Inf(neg);  // overflow
+  return f.Zero(neg) | (static_cast<uint32_t>(biased) << f.m) |
+         (static_cast<uint32_t>(mag >> shift) & f.MantMask());
+}
+
+KDRT_FP_INLINE uint32_t FromF32Bits(Format f, uint32_t bits) {
+  if ((bits & 0x7F800000u) == 0) return f.Zero((bits >> 31) != 0);  // DAZ
+  return FromDouble(f, static_cast<double>(FloatOf(bits)));
+}
+
+KDRT_FP_INLINE uint32_t FromFloat(Format f, float x) { return FromF32Bits(f, BitsOf(x)); }
+
+KDRT_FP_INLINE float ToFloat(Format f, uint32_t x) {
+  if (IsNaN(f, x)) return FloatOf(0x7FC00000u);
+  return static_cast<float>(ToDouble(f, x));  // exact: E <= 8, M <= 23
+}
+
+KDRT_FP_INLINE uint32_t Add(Format f, uint32_t a, uint32_t b) {
+  return FromDouble(f, ToDouble(f, a) + ToDouble(f, b));
+}
+
+KDRT_FP_INLINE uint32_t Sub(Format f, uint32_t a, uint32_t b) {
+  return FromDouble(f, ToDouble(f, a) - ToDouble(f, b));
+}
+
+KDRT_FP_INLINE uint32_t Mul(Format f, uint32_t a, uint32_t b) {
+  return FromDouble(f, ToDouble(f, a) * ToDouble(f, b));
+}
+
+KDRT_FP_INLINE uint32_t Div(Format f, uint32_t a, uint32_t b) {
+  return FromDouble(f, ToDouble(f, a) / ToDouble(f, b));
+}
+
+KDRT_FP_INLINE bool Lt(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) < ToDouble(f, b); }
+KDRT_FP_INLINE bool Le(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) <= ToDouble(f, b); }
+KDRT_FP_INLINE bool Eq(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) == ToDouble(f, b); }
 
 // Arithmetic policies: the tracer is templated on one of these; both have the
 // same interface. NativeF32Arith and SoftArith(kFp32) give bit-identical
