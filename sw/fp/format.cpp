@@ -113,16 +113,4 @@ uint32_t NudgeDown(Format f, uint32_t x, uint32_t k) {
   return x < min_normal + k ? 0u : x - k;
 }
 
-uint32_t Ldexp(Format f, uint32_t x, int n) {
-  // Exact in double (|n| is bounded by the callers' exponent fields), then
-  // rounded once under the policy: only FTZ or overflow can change it.
-  // A product with an exact power of two; |n| beyond double's normal range
-  // (no caller comes close) takes libm's ldexp.
-  if (n < -1022 || n > 1023) return FromDouble(f, std::ldexp(ToDouble(f, x), n));
-  const uint64_t scale_bits = static_cast<uint64_t>(n + 1023) << 52;
-  double scale;
-  std::memcpy(&scale, &scale_bits, sizeof scale);
-  return FromDouble(f, ToDouble(f, x) * scale);
-}
-
 }  // namespace kdrt::fp

@@ -126,7 +126,7 @@ uint32_t NudgeDown(Format f, uint32_t x, uint32_t k);
 // x * 2^n: exact, except that a result below the normal range is a signed
 // zero (FTZ) and one above it an infinity; zeros, infinities stay, a NaN is
 // the canonical NaN. (A subnormal x is a zero: DAZ.) rtl/fp_ldexp.sv.
-uint32_t Ldexp(Format f, uint32_t x, int n);
+// Inline, further below.
 inline uint32_t BitsOf(float x) {
   uint32_t u;
   std::memcpy(&u, &x, sizeof u);
@@ -229,6 +229,17 @@ KDRT_FP_INLINE uint32_t Div(Format f, uint32_t a, uint32_t b) {
 KDRT_FP_INLINE bool Lt(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) < ToDouble(f, b); }
 KDRT_FP_INLINE bool Le(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) <= ToDouble(f, b); }
 KDRT_FP_INLINE bool Eq(Format f, uint32_t a, uint32_t b) { return ToDouble(f, a) == ToDouble(f, b); }
+
+KDRT_FP_INLINE uint32_t Ldexp(Format f, uint32_t x, int n) {
+  // Exact in double (a product with a power of two), then rounded once
+  // under the policy: only FTZ or overflow can change it. An |n| beyond
+  // double's normal range (no caller comes close) takes libm's ldexp.
+  if (n < -1022 || n > 1023) return FromDouble(f, std::ldexp(ToDouble(f, x), n));
+  const uint64_t scale_bits = static_cast<uint64_t>(n + 1023) << 52;
+  double scale;
+  std::memcpy(&scale, &scale_bits, sizeof scale);
+  return FromDouble(f, ToDouble(f, x) * scale);
+}
 
 // Arithmetic policies: the tracer is templated on one of these; both have the
 // same interface. NativeF32Arith and SoftArith(kFp32) give bit-identical

@@ -300,9 +300,13 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
   if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
     four_wide = KDRT_HAVE_LEAF_X4 && isect == IsectMethod::kWatertight && image.raw_triangles() != nullptr;
   }
+  // An fp32 image's nodes are read in place: ImageView::node and ::next
+  // test the layout at every node.
+  const img::Node* raw_nodes = image.raw_nodes();
+  const img::ImageLayout& layout = image.layout();
   uint32_t node = 0;
   for (;;) {
-    const img::Node n = image.node(node);
+    const img::Node n = raw_nodes ? raw_nodes[node] : image.node(node);
     if (counters) ++counters->nodes;
     if (path) path->push_back(node);
     if (!n.IsLeaf()) {
@@ -313,7 +317,7 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
       } else {
         step = StepInnerNode(at, n.Split(), rt.o[axis], rt.d[axis], rt.inv_d[axis], t0, t1);
       }
-      const uint32_t below = image.next(node);
+      const uint32_t below = raw_nodes ? node + 1 : layout.NextNode(node);
       const uint32_t first = step.below_first ? below : n.AboveChild();
       const uint32_t second = step.below_first ? n.AboveChild() : below;
       if (step.action == TraversalAction::kFirst) {
