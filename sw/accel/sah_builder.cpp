@@ -406,6 +406,9 @@ class SahBuilder {
     above->cell.lo[k] = s_float;
 
     // Events of the straddling triangles, recomputed for each child cell.
+    // Without clipping a child's box of a triangle is its box clamped to the
+    // child's cell, which differs from the node's on the split axis alone:
+    // on the other two axes its events are the node's (see below).
     for (int a = 0; a < 3; ++a) {
       new_below_[a].clear();
       new_above_[a].clear();
@@ -414,17 +417,25 @@ class SahBuilder {
       Box box;
       if (ChildBox(tri, below->cell, &box)) {
         ++n_below;
-        for (int a = 0; a < 3; ++a) AppendEvents(tri, box, a, &new_below_[a]);
+        for (int a = 0; a < 3; ++a) {
+          if (perfect_ || a == k) AppendEvents(tri, box, a, &new_below_[a]);
+        }
       }
       if (ChildBox(tri, above->cell, &box)) {
         ++n_above;
-        for (int a = 0; a < 3; ++a) AppendEvents(tri, box, a, &new_above_[a]);
+        for (int a = 0; a < 3; ++a) {
+          if (perfect_ || a == k) AppendEvents(tri, box, a, &new_above_[a]);
+        }
       }
     }
     below->count = n_below;
     above->count = n_above;
 
     for (int a = 0; a < 3; ++a) {
+      if (!perfect_ && a != k) {
+        FilterEvents(node, a, below, above);
+        continue;
+      }
       std::sort(new_below_[a].begin(), new_below_[a].end());
       std::sort(new_above_[a].begin(), new_above_[a].end());
       // The one-sided triangles keep their events; a stable partition keeps
@@ -454,6 +465,35 @@ class SahBuilder {
       above->begin[a] = start + n_b;
       above->end[a] = start + n_b + n_a;
     }
+  }
+
+  // The children's lists on an axis where their events are the node's (no
+  // clipping, not the split axis): the node's list filtered, the straddlers
+  // in both, so both stay sorted with no sort or merge (the same lists the
+  // sort and merge give: events are distinct keys). A third of building
+  // strips and tree was sorting and merging these.
+  void FilterEvents(const NodeEvents& node, int a, NodeEvents* below, NodeEvents* above) {
+    std::vector<uint64_t>& arena = arena_[a];
+    size_t n_b = 0, n_a = 0;
+    for (size_t i = node.begin[a]; i < node.end[a]; ++i) {
+      const uint8_t side = side_[EventTri(arena[i])];
+      n_b += side != kAboveOnly;
+      n_a += side != kBelowOnly;
+    }
+    const size_t start = arena.size();
+    arena.resize(start + n_b + n_a);
+    uint64_t* to_below = arena.data() + start;
+    uint64_t* to_above = to_below + n_b;
+    for (size_t i = node.begin[a]; i < node.end[a]; ++i) {
+      const uint64_t e = arena[i];
+      const uint8_t side = side_[EventTri(e)];
+      if (side != kAboveOnly) *to_below++ = e;
+      if (side != kBelowOnly) *to_above++ = e;
+    }
+    below->begin[a] = start;
+    below->end[a] = start + n_b;
+    above->begin[a] = start + n_b;
+    above->end[a] = start + n_b + n_a;
   }
 
   // The part of a straddling triangle's box inside a child cell; false if
