@@ -50,7 +50,20 @@ class PaddedCopy {
   uint8_t bytes_[N + 8] = {};
 };
 
+// Writes the low n bits of v at bit `bit`. The 8 bytes from bit / 8 must be
+// inside the buffer (BuildMemoryImage pads its buffer while it writes): a
+// field of at most 57 bits is then one unaligned 64-bit read-modify-write.
 void SetBits(uint8_t* p, uint64_t bit, int n, uint64_t v) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  if (n <= 57) {
+    const uint64_t mask = ((uint64_t{1} << n) - 1) << (bit & 7);
+    uint64_t word;
+    std::memcpy(&word, p + (bit >> 3), sizeof word);
+    word = (word & ~mask) | ((v << (bit & 7)) & mask);
+    std::memcpy(p + (bit >> 3), &word, sizeof word);
+    return;
+  }
+#endif
   for (int put = 0; put < n;) {
     const uint64_t b = bit + static_cast<uint64_t>(put);
     const int off = static_cast<int>(b & 7);
@@ -137,7 +150,8 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, co
   }
   h.frame_scale_log2 = frame.scale_log2;
 
-  std::vector<uint8_t> bytes(total, 0);
+  // 8 bytes of padding for SetBits while the image is written, cut below.
+  std::vector<uint8_t> bytes(total + 8, 0);
   std::memcpy(bytes.data(), &h, sizeof(h));
   // tree.nodes is in layout order with positions as indices (img::Node,
   // binary32 splits); each goes to its slot with its indices re-encoded.
@@ -169,6 +183,7 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, co
     for (int k = 0; k < 9; ++k) SetBits(line, at + k * w, w, StoredBits(layout, (*v[k / 3])[k % 3]));
     if (layout.TriangleHasId()) SetBits(line, at + 9ull * w, 32, static_cast<uint32_t>(i));
   }
+  bytes.resize(total);
   return bytes;
 }
 
