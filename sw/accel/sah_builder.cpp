@@ -405,35 +405,41 @@ class SahBuilder {
     above->cell = node.cell;
     above->cell.lo[k] = s_float;
 
-    // Events of the straddling triangles, recomputed for each child cell.
-    // Without clipping a child's box of a triangle is its box clamped to the
-    // child's cell, which differs from the node's on the split axis alone:
-    // on the other two axes its events are the node's (see below).
+    // Events of the straddling triangles, recomputed for each child cell:
+    // their boxes re-clipped with perfect splits. Without clipping a child's
+    // box of a triangle is its box clamped to the child's cell, which differs
+    // from the node's on the split axis alone, at the plane (SplitAxisEvents,
+    // FilterEvents).
     for (int a = 0; a < 3; ++a) {
       new_below_[a].clear();
       new_above_[a].clear();
     }
     for (uint32_t tri : straddlers_) {
+      if (!perfect_) {
+        ++n_below;
+        ++n_above;
+        continue;
+      }
       Box box;
       if (ChildBox(tri, below->cell, &box)) {
         ++n_below;
-        for (int a = 0; a < 3; ++a) {
-          if (perfect_ || a == k) AppendEvents(tri, box, a, &new_below_[a]);
-        }
+        for (int a = 0; a < 3; ++a) AppendEvents(tri, box, a, &new_below_[a]);
       }
       if (ChildBox(tri, above->cell, &box)) {
         ++n_above;
-        for (int a = 0; a < 3; ++a) {
-          if (perfect_ || a == k) AppendEvents(tri, box, a, &new_above_[a]);
-        }
+        for (int a = 0; a < 3; ++a) AppendEvents(tri, box, a, &new_above_[a]);
       }
     }
     below->count = n_below;
     above->count = n_above;
 
     for (int a = 0; a < 3; ++a) {
-      if (!perfect_ && a != k) {
-        FilterEvents(node, a, below, above);
+      if (!perfect_) {
+        if (a == k) {
+          SplitAxisEvents(node, k, s, below, above);
+        } else {
+          FilterEvents(node, a, below, above);
+        }
         continue;
       }
       std::sort(new_below_[a].begin(), new_below_[a].end());
@@ -465,6 +471,73 @@ class SahBuilder {
       above->begin[a] = start + n_b;
       above->end[a] = start + n_b + n_a;
     }
+  }
+
+  // The children's lists on the split axis without clipping. A straddling
+  // triangle (start below the plane, end above it) keeps its start in the
+  // below child and its end in the above child, and its box clamped to each
+  // child ends (below) or starts (above) at the plane: those new events sit
+  // at the plane, among the events there in triangle order. So the lists are
+  // the node's filtered, with the new events merged in at the tail (below)
+  // and the head (above), in place: only the straddlers' ids are sorted.
+  void SplitAxisEvents(const NodeEvents& node, int k, uint32_t plane_bits, NodeEvents* below,
+                       NodeEvents* above) {
+    straddler_ids_.assign(straddlers_.begin(), straddlers_.end());
+    std::sort(straddler_ids_.begin(), straddler_ids_.end());
+    const size_t n_s = straddler_ids_.size();
+    std::vector<uint64_t>& arena = arena_[k];
+    const auto to_below = [this](uint64_t e) {
+      const uint8_t side = side_[EventTri(e)];
+      return side == kBelowOnly || (side == kBoth && EventKind(e) == kStart);
+    };
+    const auto to_above = [this](uint64_t e) {
+      const uint8_t side = side_[EventTri(e)];
+      return side == kAboveOnly || (side == kBoth && EventKind(e) == kEnd);
+    };
+    size_t kept_b = 0, kept_a = 0;
+    for (size_t i = node.begin[k]; i < node.end[k]; ++i) {
+      kept_b += to_below(arena[i]);
+      kept_a += to_above(arena[i]);
+    }
+    const size_t start = arena.size();
+    const size_t n_b = kept_b + n_s, n_a = kept_a + n_s;
+    arena.resize(start + n_b + n_a);
+    uint64_t* out_b = arena.data() + start;
+    uint64_t* out_a = out_b + n_b;
+    size_t wb = 0, wa = n_s;  // the above list's kept events start after room for the new ones
+    for (size_t i = node.begin[k]; i < node.end[k]; ++i) {
+      const uint64_t e = arena[i];
+      if (to_below(e)) out_b[wb++] = e;
+      if (to_above(e)) out_a[wa++] = e;
+    }
+    const uint64_t plane = uint64_t{plane_bits} << 32;
+    // Below: merged from the back; the write position never passes the read one.
+    size_t r = kept_b, w = n_b;
+    for (size_t j = n_s; j > 0;) {
+      const uint64_t e = plane | (uint64_t{straddler_ids_[j - 1]} << 2) | kEnd;
+      if (r > 0 && out_b[r - 1] > e) {
+        out_b[--w] = out_b[--r];
+      } else {
+        out_b[--w] = e;
+        --j;
+      }
+    }
+    // Above: merged from the front, likewise.
+    r = n_s;
+    w = 0;
+    for (size_t j = 0; j < n_s;) {
+      const uint64_t e = plane | (uint64_t{straddler_ids_[j]} << 2) | kStart;
+      if (r < n_a && out_a[r] < e) {
+        out_a[w++] = out_a[r++];
+      } else {
+        out_a[w++] = e;
+        ++j;
+      }
+    }
+    below->begin[k] = start;
+    below->end[k] = start + n_b;
+    above->begin[k] = start + n_b;
+    above->end[k] = start + n_b + n_a;
   }
 
   // The children's lists on an axis where their events are the node's (no
@@ -516,7 +589,7 @@ class SahBuilder {
   std::vector<uint64_t> arena_[3];  // stack of event lists, one per axis
   std::vector<uint8_t> side_;       // per triangle id, valid while splitting a node
   // Scratch reused by every node, so the hot loops do not allocate.
-  std::vector<uint32_t> straddlers_;
+  std::vector<uint32_t> straddlers_, straddler_ids_;
   std::vector<uint64_t> new_below_[3], new_above_[3];
   std::vector<uint64_t> kept_below_, kept_above_;
   std::vector<uint32_t> leaf_ids_;
