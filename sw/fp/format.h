@@ -176,6 +176,17 @@ KDRT_FP_INLINE double ToDouble(Format f, uint32_t x) {
   return neg ? -mag : mag;
 }
 
+// Rounds a float's or a double's encoding at bit `shift` (clearing the bits
+// below it), ties to even: adding half an ulp minus one plus the kept lowest
+// bit and truncating rounds to nearest even, and a carry out of the fraction
+// steps the exponent, as rounding up to a power of two does. Exact for
+// normal numbers.
+template <class U>
+KDRT_FP_INLINE U RoundEncoding(U u, int shift) {
+  u += (U{1} << (shift - 1)) - 1 + ((u >> shift) & 1u);
+  return u & ~((U{1} << shift) - 1);
+}
+
 KDRT_FP_INLINE uint32_t FromDouble(Format f, double x) {
   uint64_t bits;
   std::memcpy(&bits, &x, sizeof bits);
@@ -185,12 +196,9 @@ KDRT_FP_INLINE uint32_t FromDouble(Format f, double x) {
   // A subnormal double is far below the smallest normal of any format here.
   if ((mag >> 52) == 0) return f.Zero(neg);
 
-  // Round the fraction to M bits, ties to even, on the encoding: adding
-  // half an ulp minus one plus the kept lsb and truncating rounds to
-  // nearest even; a carry out of the fraction steps the exponent, as
-  // rounding up to the next power of two does.
+  // The fraction rounded to M bits on the encoding.
   const int shift = 52 - f.m;
-  mag += (uint64_t{1} << (shift - 1)) - 1 + ((mag >> shift) & 1u);
+  mag = RoundEncoding(mag, shift);
   const int biased = static_cast<int>(mag >> 52) - 1023 + f.Bias();
   if (biased <= 0) return f.Zero(neg);                                    // FTZ
   if (biased >= static_cast<int>(f.ExpAllOnes())) return f.Inf(neg);  // overflow

@@ -10,29 +10,17 @@
 #include <cmath>
 #include <cstring>
 
+#include "fp/format.h"
 #include "trace/frame.h"
 #include "trace/precision_criteria.h"
 
 namespace kdrt {
 
-namespace {
-
-// Rounds a float's or a double's encoding at bit `shift`, ties to even; a
-// carry out of the fraction steps the exponent, as rounding up to a power of
-// two does. Exact for normal numbers.
-template <class U>
-U RoundEncoding(U u, int shift) {
-  u += (U{1} << (shift - 1)) - 1 + ((u >> shift) & 1u);
-  return u & ~((U{1} << shift) - 1);
-}
-
-}  // namespace
-
 float RoundMantissa(float x, int m) {
   if (m >= 23) return x;
   const uint32_t u = fp::BitsOf(x);
   if ((u & 0x7F800000u) == 0x7F800000u) return x;  // inf, NaN
-  return fp::FloatOf(RoundEncoding(u, 23 - m));
+  return fp::FloatOf(fp::RoundEncoding(u, 23 - m));
 }
 
 namespace {
@@ -215,7 +203,7 @@ double RoundMantissaD(double x, int m) {
   if (x == 0 || !std::isfinite(x) || m >= 52) return x;
   uint64_t u;
   std::memcpy(&u, &x, sizeof u);
-  u = RoundEncoding(u, 52 - m);
+  u = fp::RoundEncoding(u, 52 - m);
   std::memcpy(&x, &u, sizeof x);
   return x;
 }
