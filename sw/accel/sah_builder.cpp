@@ -19,6 +19,7 @@
 #include <cstring>
 #include <exception>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "accel/build_util.h"
@@ -473,6 +474,49 @@ class SahBuilder {
     }
   }
 
+  // Appends the children's lists on axis `a` to its arena: the node's
+  // events for which to_below (to_above) holds, in their order, with `room`
+  // free slots at the end of the below list and at the front of the above
+  // list; sets the children's ranges on `a` and returns where the two lists
+  // start.
+  template <class ToBelow, class ToAbove>
+  std::pair<uint64_t*, uint64_t*> PartitionEvents(const NodeEvents& node, int a, size_t room, ToBelow to_below,
+                                                  ToAbove to_above, NodeEvents* below, NodeEvents* above) {
+    std::vector<uint64_t>& arena = arena_[a];
+    size_t n_b = room, n_a = room;
+    for (size_t i = node.begin[a]; i < node.end[a]; ++i) {
+      n_b += to_below(arena[i]);
+      n_a += to_above(arena[i]);
+    }
+    const size_t start = arena.size();
+    arena.resize(start + n_b + n_a);
+    uint64_t* const out_b = arena.data() + start;
+    uint64_t* const out_a = out_b + n_b;
+    uint64_t* wb = out_b;
+    uint64_t* wa = out_a + room;
+    for (size_t i = node.begin[a]; i < node.end[a]; ++i) {
+      const uint64_t e = arena[i];
+      if (to_below(e)) *wb++ = e;
+      if (to_above(e)) *wa++ = e;
+    }
+    below->begin[a] = start;
+    below->end[a] = start + n_b;
+    above->begin[a] = start + n_b;
+    above->end[a] = start + n_b + n_a;
+    return {out_b, out_a};
+  }
+
+  // The children's lists on an axis where their events are the node's (no
+  // clipping, not the split axis): the node's list filtered, the straddlers
+  // in both, so both stay sorted with no sort or merge (the same lists the
+  // sort and merge give: events are distinct keys). A third of building
+  // strips and tree was sorting and merging these.
+  void FilterEvents(const NodeEvents& node, int a, NodeEvents* below, NodeEvents* above) {
+    PartitionEvents(
+        node, a, 0, [this](uint64_t e) { return side_[EventTri(e)] != kAboveOnly; },
+        [this](uint64_t e) { return side_[EventTri(e)] != kBelowOnly; }, below, above);
+  }
+
   // The children's lists on the split axis without clipping. A straddling
   // triangle (start below the plane, end above it) keeps its start in the
   // below child and its end in the above child, and its box clamped to each
@@ -485,34 +529,21 @@ class SahBuilder {
     straddler_ids_.assign(straddlers_.begin(), straddlers_.end());
     std::sort(straddler_ids_.begin(), straddler_ids_.end());
     const size_t n_s = straddler_ids_.size();
-    std::vector<uint64_t>& arena = arena_[k];
-    const auto to_below = [this](uint64_t e) {
-      const uint8_t side = side_[EventTri(e)];
-      return side == kBelowOnly || (side == kBoth && EventKind(e) == kStart);
-    };
-    const auto to_above = [this](uint64_t e) {
-      const uint8_t side = side_[EventTri(e)];
-      return side == kAboveOnly || (side == kBoth && EventKind(e) == kEnd);
-    };
-    size_t kept_b = 0, kept_a = 0;
-    for (size_t i = node.begin[k]; i < node.end[k]; ++i) {
-      kept_b += to_below(arena[i]);
-      kept_a += to_above(arena[i]);
-    }
-    const size_t start = arena.size();
-    const size_t n_b = kept_b + n_s, n_a = kept_a + n_s;
-    arena.resize(start + n_b + n_a);
-    uint64_t* out_b = arena.data() + start;
-    uint64_t* out_a = out_b + n_b;
-    size_t wb = 0, wa = n_s;  // the above list's kept events start after room for the new ones
-    for (size_t i = node.begin[k]; i < node.end[k]; ++i) {
-      const uint64_t e = arena[i];
-      if (to_below(e)) out_b[wb++] = e;
-      if (to_above(e)) out_a[wa++] = e;
-    }
+    const auto [out_b, out_a] = PartitionEvents(
+        node, k, n_s,
+        [this](uint64_t e) {
+          const uint8_t side = side_[EventTri(e)];
+          return side == kBelowOnly || (side == kBoth && EventKind(e) == kStart);
+        },
+        [this](uint64_t e) {
+          const uint8_t side = side_[EventTri(e)];
+          return side == kAboveOnly || (side == kBoth && EventKind(e) == kEnd);
+        },
+        below, above);
+    const size_t n_b = below->end[k] - below->begin[k], n_a = above->end[k] - above->begin[k];
     const uint64_t plane = uint64_t{plane_bits} << 32;
     // Below: merged from the back; the write position never passes the read one.
-    size_t r = kept_b, w = n_b;
+    size_t r = n_b - n_s, w = n_b;
     for (size_t j = n_s; j > 0;) {
       const uint64_t e = plane | (uint64_t{straddler_ids_[j - 1]} << 2) | kEnd;
       if (r > 0 && out_b[r - 1] > e) {
@@ -534,39 +565,6 @@ class SahBuilder {
         ++j;
       }
     }
-    below->begin[k] = start;
-    below->end[k] = start + n_b;
-    above->begin[k] = start + n_b;
-    above->end[k] = start + n_b + n_a;
-  }
-
-  // The children's lists on an axis where their events are the node's (no
-  // clipping, not the split axis): the node's list filtered, the straddlers
-  // in both, so both stay sorted with no sort or merge (the same lists the
-  // sort and merge give: events are distinct keys). A third of building
-  // strips and tree was sorting and merging these.
-  void FilterEvents(const NodeEvents& node, int a, NodeEvents* below, NodeEvents* above) {
-    std::vector<uint64_t>& arena = arena_[a];
-    size_t n_b = 0, n_a = 0;
-    for (size_t i = node.begin[a]; i < node.end[a]; ++i) {
-      const uint8_t side = side_[EventTri(arena[i])];
-      n_b += side != kAboveOnly;
-      n_a += side != kBelowOnly;
-    }
-    const size_t start = arena.size();
-    arena.resize(start + n_b + n_a);
-    uint64_t* to_below = arena.data() + start;
-    uint64_t* to_above = to_below + n_b;
-    for (size_t i = node.begin[a]; i < node.end[a]; ++i) {
-      const uint64_t e = arena[i];
-      const uint8_t side = side_[EventTri(e)];
-      if (side != kAboveOnly) *to_below++ = e;
-      if (side != kBelowOnly) *to_above++ = e;
-    }
-    below->begin[a] = start;
-    below->end[a] = start + n_b;
-    above->begin[a] = start + n_b;
-    above->end[a] = start + n_b + n_a;
   }
 
   // The part of a straddling triangle's box inside a child cell; false if
