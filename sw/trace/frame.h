@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "common/ray.h"
+#include "fp/format.h"
 #include "scene/scene.h"
 
 namespace kdrt {
@@ -62,5 +63,56 @@ FramedRay ToFrame(const Ray& world, const Frame& frame);
 // ldexp(t, t_scale_log2) in fp32 under the same policy (exact unless the
 // result leaves the normal range: then a signed zero or an infinity).
 float DistanceToWorld(float t, int32_t t_scale_log2);
+
+// The same two functions on native fp32, bit for bit (tests Frame.Native*),
+// for the fp32 tracer, where the soft-float calls above were a tenth of a
+// ray's time. The caller MUST hold fp::ScopedFtzDaz (fp/ftz.h), as for
+// fp::NativeF32Arith: flushing and round to nearest then make the native
+// subtraction the policy's. A NaN anywhere in the ray takes the soft path
+// (native arithmetic keeps a NaN's payload, the policy gives its canonical
+// NaN).
+//
+// x * 2^n: products with normal powers of two are exact, and a chain of them
+// all of one sign leaves the normal range only where the whole product does
+// (DAZ makes a subnormal x a zero, FTZ a tiny result a signed zero, as
+// fp::Ldexp).
+inline float ScalePow2Ftz(float x, int n) {
+  while (n > 126) {
+    x *= 0x1p126f;
+    n -= 126;
+  }
+  while (n < -126) {
+    x *= 0x1p-126f;
+    n += 126;
+  }
+  return x * fp::FloatOf(static_cast<uint32_t>(n + 127) << 23);
+}
+
+inline FramedRay ToFrameFtz(const Ray& world, const Frame& frame) {
+  bool nan = false;
+  for (int i = 0; i < 3; ++i) nan |= world.o[i] != world.o[i] || world.d[i] != world.d[i];
+  if (nan || world.tmin != world.tmin || world.tmax != world.tmax) return ToFrame(world, frame);
+  // Subnormal inputs are flushed on the bits (fp::NativeF32Arith::Load):
+  // where a scale is a constant 1 the compiler folds the product away, and
+  // with it DAZ.
+  const auto in = [](float x) { return fp::NativeF32Arith::Load(x); };
+  FramedRay r;
+  uint32_t max_exp = 0;
+  for (int i = 0; i < 3; ++i) {
+    r.ray.o[i] = ScalePow2Ftz(in(world.o[i]) - in(frame.origin[i]), frame.scale_log2);
+    const uint32_t e = (fp::BitsOf(world.d[i]) >> 23) & 0xFFu;
+    max_exp = e > max_exp ? e : max_exp;
+  }
+  const int m = max_exp == 0 ? 0 : 127 - static_cast<int>(max_exp);
+  for (int i = 0; i < 3; ++i) r.ray.d[i] = ScalePow2Ftz(in(world.d[i]), m);
+  r.t_scale_log2 = m - frame.scale_log2;
+  r.ray.tmin = ScalePow2Ftz(in(world.tmin), -r.t_scale_log2);
+  r.ray.tmax = ScalePow2Ftz(in(world.tmax), -r.t_scale_log2);
+  return r;
+}
+
+inline float DistanceToWorldFtz(float t, int32_t t_scale_log2) {
+  return t != t ? DistanceToWorld(t, t_scale_log2) : ScalePow2Ftz(fp::NativeF32Arith::Load(t), t_scale_log2);
+}
 
 }  // namespace kdrt

@@ -144,7 +144,11 @@ template <class A>
 Hit ToHit(const A& a, const TraceResult<A>& r) {
   Hit h;
   if (r.prim == kNoPrim) return h;
-  h.t = DistanceToWorld(a.Store(r.t), r.t_scale_log2);
+  if constexpr (std::is_same_v<A, fp::NativeF32Arith>) {
+    h.t = DistanceToWorldFtz(r.t, r.t_scale_log2);  // A's contract: FTZ is held
+  } else {
+    h.t = DistanceToWorld(a.Store(r.t), r.t_scale_log2);
+  }
   h.u = a.Store(r.u);
   h.v = a.Store(r.v);
   h.prim = r.prim;
@@ -253,12 +257,29 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
                            Query query, RayCounters* counters = nullptr, std::vector<uint32_t>* path = nullptr,
                            int stack_limit = kMaxTraversalStack) {
   using T = typename At::T;
-  const FramedRay framed = ToFrame(ray, image.frame());
+  // Native fp32 holds FTZ (NativeF32Arith's contract): its frame mapping
+  // may run natively, with the same bits.
+  FramedRay framed;
+  if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
+    framed = ToFrameFtz(ray, image.frame());
+  } else {
+    framed = ToFrame(ray, image.frame());
+  }
   const RaySetup<Ai> r = SetupRay(ai, framed.ray);
   TraceResult<Ai> best;
   best.t_scale_log2 = framed.t_scale_log2;
   best.t = r.tmax;
   best.u = best.v = ai.Zero();
+
+  // Counted in a local (registers), added to *counters on every return.
+  struct CountOnExit {
+    RayCounters local;
+    RayCounters* out;
+    ~CountOnExit() {
+      if (out) *out += local;
+    }
+  } on_exit{RayCounters{}, counters};
+  RayCounters& counted = on_exit.local;
 
   const img::Header& h = image.header();
   RaySetup<At> mixed_ray;  // Mixed: the traversal's own ray
@@ -307,7 +328,7 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
   uint32_t node = 0;
   for (;;) {
     const img::Node n = raw_nodes ? raw_nodes[node] : image.node(node);
-    if (counters) ++counters->nodes;
+    ++counted.nodes;
     if (path) path->push_back(node);
     if (!n.IsLeaf()) {
       const int axis = n.Axis();
@@ -326,7 +347,7 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
         node = second;
       } else {
         if (sp >= stack_limit) {
-          if (counters) ++counters->overflows;
+          ++counted.overflows;
           return best;
         }
         stack[sp++] = Entry{second, step.t_lo, t1};
@@ -336,11 +357,11 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
       }
       continue;
     }
-    if (counters) ++counters->leaves;
+    ++counted.leaves;
     const uint32_t count = n.Count();
     const uint32_t* ids = lists + n.FirstEntry();
     const typename Ai::T leaf_tmax = best.t;
-    if (counters) counters->tri_tests += count;
+    counted.tri_tests += count;
     if (four_wide) {
 #if KDRT_HAVE_LEAF_X4
       if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
