@@ -55,13 +55,34 @@ constexpr uint32_t kNegativeZeroBits = 0x7fffffffu;
 
 inline EventType EventKind(uint64_t e) { return static_cast<EventType>(e & 3u); }
 
+// std::allocator that leaves a resize's new elements uninitialised: the
+// event lists are resized before they are written, and zeroing them first
+// cost a pass over the memory.
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  using std::allocator<T>::allocator;
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+using EventList = std::vector<uint64_t, DefaultInitAllocator<uint64_t>>;
+
 // LSD radix sort of the root event lists, 16 bits per pass (a few times
 // faster than std::sort on millions of keys); `tmp` is scratch.
-void RadixSort(std::vector<uint64_t>* keys, std::vector<uint64_t>* tmp) {
+void RadixSort(EventList* keys, EventList* tmp) {
   constexpr int kBits = 16;
   constexpr size_t kBuckets = size_t{1} << kBits;
-  std::vector<uint64_t>& a = *keys;
-  std::vector<uint64_t>& b = *tmp;
+  EventList& a = *keys;
+  EventList& b = *tmp;
   b.resize(a.size());
   std::vector<size_t> count(kBuckets);
   for (int shift = 0; shift < 64; shift += kBits) {
@@ -81,6 +102,7 @@ void RadixSort(std::vector<uint64_t>* keys, std::vector<uint64_t>* tmp) {
 }
 
 constexpr int kMaxBadRefines = 3;  // pbrt-v3's limit
+
 
 enum Side : uint8_t { kBoth = 0, kBelowOnly = 1, kAboveOnly = 2 };
 
@@ -105,7 +127,7 @@ struct Split {
 // event lists (copied out of the arena), its cell and where the recursion
 // stood.
 struct DeferredSubtree {
-  std::vector<uint64_t> events[3];
+  EventList events[3];
   uint32_t count = 0;
   Box cell{};
   int depth = 0;
@@ -174,7 +196,7 @@ class SahBuilder {
   // otherwise start and end at its box bounds. A clipped box that is flat
   // (the triangle only touches a face of the cell) is planar too, so that
   // start == end can never be classified as both below-only and above-only.
-  void AppendEvents(uint32_t tri, const Box& box, int axis, std::vector<uint64_t>* out) const {
+  void AppendEvents(uint32_t tri, const Box& box, int axis, EventList* out) const {
     if (IsFlat(tri, axis)) {
       const glm::vec3& v = tris_[tri].v0;
       out->push_back(MakeEvent(v[axis], tri, kPlanar));
@@ -458,7 +480,7 @@ class SahBuilder {
           kept_above_.push_back(src[i]);
         }
       }
-      std::vector<uint64_t>& arena = arena_[a];
+      EventList& arena = arena_[a];
       const size_t start = arena.size();
       const size_t n_b = kept_below_.size() + new_below_[a].size();
       const size_t n_a = kept_above_.size() + new_above_[a].size();
@@ -482,23 +504,32 @@ class SahBuilder {
   template <class ToBelow, class ToAbove>
   std::pair<uint64_t*, uint64_t*> PartitionEvents(const NodeEvents& node, int a, size_t room, ToBelow to_below,
                                                   ToAbove to_above, NodeEvents* below, NodeEvents* above) {
-    std::vector<uint64_t>& arena = arena_[a];
-    size_t n_b = room, n_a = room;
-    for (size_t i = node.begin[a]; i < node.end[a]; ++i) {
-      n_b += to_below(arena[i]);
-      n_a += to_above(arena[i]);
-    }
+    // One pass over the node's events: the below list is written in place,
+    // the above list past the most the below list can take, then moved down
+    // next to it (a sequential copy costs less than a counting pass, whose
+    // lookups of side_ are random).
+    EventList& arena = arena_[a];
+    const size_t len = node.end[a] - node.begin[a];
     const size_t start = arena.size();
-    arena.resize(start + n_b + n_a);
+    arena.resize(start + 2 * (len + room));
     uint64_t* const out_b = arena.data() + start;
-    uint64_t* const out_a = out_b + n_b;
+    uint64_t* const scratch_a = out_b + len + 2 * room;
     uint64_t* wb = out_b;
-    uint64_t* wa = out_a + room;
+    uint64_t* wa = scratch_a;
+    const uint64_t* const src = arena.data();
     for (size_t i = node.begin[a]; i < node.end[a]; ++i) {
-      const uint64_t e = arena[i];
-      if (to_below(e)) *wb++ = e;
-      if (to_above(e)) *wa++ = e;
+      const uint64_t e = src[i];
+      *wb = e;
+      wb += to_below(e);
+      *wa = e;
+      wa += to_above(e);
     }
+    const size_t n_b = static_cast<size_t>(wb - out_b) + room;
+    const size_t n_a_events = static_cast<size_t>(wa - scratch_a);
+    uint64_t* const out_a = out_b + n_b;
+    std::memmove(out_a + room, scratch_a, n_a_events * sizeof(uint64_t));
+    const size_t n_a = n_a_events + room;
+    arena.resize(start + n_b + n_a);
     below->begin[a] = start;
     below->end[a] = start + n_b;
     above->begin[a] = start + n_b;
@@ -584,12 +615,12 @@ class SahBuilder {
   const bool perfect_;
   TreeWriter* writer_;
 
-  std::vector<uint64_t> arena_[3];  // stack of event lists, one per axis
+  EventList arena_[3];  // stack of event lists, one per axis
   std::vector<uint8_t> side_;       // per triangle id, valid while splitting a node
   // Scratch reused by every node, so the hot loops do not allocate.
   std::vector<uint32_t> straddlers_, straddler_ids_;
-  std::vector<uint64_t> new_below_[3], new_above_[3];
-  std::vector<uint64_t> kept_below_, kept_above_;
+  EventList new_below_[3], new_above_[3];
+  EventList kept_below_, kept_above_;
   std::vector<uint32_t> leaf_ids_;
 
   int defer_depth_ = -1;
