@@ -325,83 +325,94 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
   // test the layout at every node.
   const img::Node* raw_nodes = image.raw_nodes();
   const img::ImageLayout& layout = image.layout();
-  uint32_t node = 0;
-  for (;;) {
-    const img::Node n = raw_nodes ? raw_nodes[node] : image.node(node);
-    ++counted.nodes;
-    if (path) path->push_back(node);
-    if (!n.IsLeaf()) {
-      const int axis = n.Axis();
-      TraversalStep<At> step;
-      if constexpr (Mixed) {
-        step = StepInnerNodeMixed(at, ai, n.Split(), rt.o[axis], rt.d[axis], rt.inv_d[axis], t0, t1);
-      } else {
-        step = StepInnerNode(at, n.Split(), rt.o[axis], rt.d[axis], rt.inv_d[axis], t0, t1);
+  // The walk, compiled twice for native fp32: the common case (an fp32
+  // image, no path recorded) without the per-node tests of either.
+  const auto walk = [&](auto raw_no_path) -> TraceResult<Ai> {
+    constexpr bool kRawNoPath = decltype(raw_no_path)::value;
+    uint32_t node = 0;
+    for (;;) {
+      const img::Node n = kRawNoPath || raw_nodes ? raw_nodes[node] : image.node(node);
+      ++counted.nodes;
+      if constexpr (!kRawNoPath) {
+        if (path) path->push_back(node);
       }
-      const uint32_t below = raw_nodes ? node + 1 : layout.NextNode(node);
-      const uint32_t first = step.below_first ? below : n.AboveChild();
-      const uint32_t second = step.below_first ? n.AboveChild() : below;
-      if (step.action == TraversalAction::kFirst) {
-        node = first;
-      } else if (step.action == TraversalAction::kSecond) {
-        node = second;
-      } else {
-        if (sp >= stack_limit) {
-          ++counted.overflows;
-          return best;
+      if (!n.IsLeaf()) {
+        const int axis = n.Axis();
+        TraversalStep<At> step;
+        if constexpr (Mixed) {
+          step = StepInnerNodeMixed(at, ai, n.Split(), rt.o[axis], rt.d[axis], rt.inv_d[axis], t0, t1);
+        } else {
+          step = StepInnerNode(at, n.Split(), rt.o[axis], rt.d[axis], rt.inv_d[axis], t0, t1);
         }
-        stack[sp++] = Entry{second, step.t_lo, t1};
-        if (InPlane(at, step.t_lo)) ++in_plane;
-        node = first;
-        t1 = step.t_hi;
+        const uint32_t below = kRawNoPath || raw_nodes ? node + 1 : layout.NextNode(node);
+        const uint32_t first = step.below_first ? below : n.AboveChild();
+        const uint32_t second = step.below_first ? n.AboveChild() : below;
+        if (step.action == TraversalAction::kFirst) {
+          node = first;
+        } else if (step.action == TraversalAction::kSecond) {
+          node = second;
+        } else {
+          if (sp >= stack_limit) {
+            ++counted.overflows;
+            return best;
+          }
+          stack[sp++] = Entry{second, step.t_lo, t1};
+          if (InPlane(at, step.t_lo)) ++in_plane;
+          node = first;
+          t1 = step.t_hi;
+        }
+        continue;
       }
-      continue;
-    }
-    ++counted.leaves;
-    const uint32_t count = n.Count();
-    const uint32_t* ids = lists + n.FirstEntry();
-    const typename Ai::T leaf_tmax = best.t;
-    counted.tri_tests += count;
-    if (four_wide) {
-#if KDRT_HAVE_LEAF_X4
-      if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
-        for (uint32_t k = 0; k < count; k += 4) {
-          float ct[4], cu[4], cv[4];
-          const uint32_t group = count - k < 4 ? count - k : 4;
-          for (unsigned m = IntersectWatertightX4(r, image.raw_triangles(), ids + k, group, leaf_tmax, ct, cu, cv);
-               m != 0; m &= m - 1) {
-            const int lane = __builtin_ctz(m);
-            offer(ct[lane], cu[lane], cv[lane], ids[k + lane]);
+      ++counted.leaves;
+      const uint32_t count = n.Count();
+      const uint32_t* ids = lists + n.FirstEntry();
+      const typename Ai::T leaf_tmax = best.t;
+      counted.tri_tests += count;
+      if (four_wide) {
+  #if KDRT_HAVE_LEAF_X4
+        if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
+          for (uint32_t k = 0; k < count; k += 4) {
+            float ct[4], cu[4], cv[4];
+            const uint32_t group = count - k < 4 ? count - k : 4;
+            for (unsigned m = IntersectWatertightX4(r, image.raw_triangles(), ids + k, group, leaf_tmax, ct, cu, cv);
+                 m != 0; m &= m - 1) {
+              const int lane = __builtin_ctz(m);
+              offer(ct[lane], cu[lane], cv[lane], ids[k + lane]);
+            }
           }
         }
+  #endif
+      } else {
+        for (uint32_t k = 0; k < count; ++k) {
+          const uint32_t id = ids[k];
+          const Candidate<Ai> c = isect == IsectMethod::kWatertight
+                                      ? IntersectWatertight(ai, r, image.triangle(id), leaf_tmax)
+                                      : IntersectMoller(ai, r, image.triangle(id), leaf_tmax);
+          if (c.hit) offer(c.t, c.u, c.v, id);
+        }
       }
-#endif
-    } else {
-      for (uint32_t k = 0; k < count; ++k) {
-        const uint32_t id = ids[k];
-        const Candidate<Ai> c = isect == IsectMethod::kWatertight
-                                    ? IntersectWatertight(ai, r, image.triangle(id), leaf_tmax)
-                                    : IntersectMoller(ai, r, image.triangle(id), leaf_tmax);
-        if (c.hit) offer(c.t, c.u, c.v, id);
+      const bool may_stop = best.prim != kNoPrim && in_plane == 0;
+      if (best.prim != kNoPrim && query == Query::kAny) return best;
+      T best_t;
+      if constexpr (Mixed) {
+        best_t = Widen(at, ai, best.t);
+      } else {
+        best_t = best.t;
       }
+      if (may_stop && at.Le(best_t, t1)) return best;
+      if (sp == 0) return best;
+      const Entry& e = stack[--sp];
+      if (may_stop && at.Lt(best_t, e.t0)) return best;
+      if (InPlane(at, e.t0)) --in_plane;
+      node = e.node;
+      t0 = e.t0;
+      t1 = e.t1;
     }
-    const bool may_stop = best.prim != kNoPrim && in_plane == 0;
-    if (best.prim != kNoPrim && query == Query::kAny) return best;
-    T best_t;
-    if constexpr (Mixed) {
-      best_t = Widen(at, ai, best.t);
-    } else {
-      best_t = best.t;
-    }
-    if (may_stop && at.Le(best_t, t1)) return best;
-    if (sp == 0) return best;
-    const Entry& e = stack[--sp];
-    if (may_stop && at.Lt(best_t, e.t0)) return best;
-    if (InPlane(at, e.t0)) --in_plane;
-    node = e.node;
-    t0 = e.t0;
-    t1 = e.t1;
+  };
+  if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
+    if (raw_nodes != nullptr && path == nullptr) return walk(std::true_type{});
   }
+  return walk(std::false_type{});
 }
 
 // Traversal and test in one format (the RTL core's datapath).
