@@ -56,6 +56,52 @@ inline void Transpose(V4f a, V4f b, V4f c, V4f d, V4f out[4]) {
   out[3] = __builtin_shuffle(ab_hi, cd_hi, V4i{2, 3, 6, 7});
 }
 
+// The test of four triangles (vert[vertex][axis], lane k: triangle k) with
+// the ray's axes kx, ky, kz fixed.
+template <int KX, int KY, int KZ>
+inline unsigned TestX4(const RaySetup<fp::NativeF32Arith>& r, const V4f vert[3][3], uint32_t n, float tmax,
+                       float out_t[4], float out_u[4], float out_v[4]) {
+  V4f p[3][3];  // vertex - origin, per vertex and axis
+  for (int k = 0; k < 3; ++k) {
+    for (int i = 0; i < 3; ++i) p[k][i] = leaf_x4::Load(vert[k][i]) - Splat(r.o[i]);
+  }
+  const V4f sx = Splat(r.sx), sy = Splat(r.sy), sz = Splat(r.sz);
+  V4f x[3], y[3], z[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = p[k][KX] - sx * p[k][KZ];
+    y[k] = p[k][KY] - sy * p[k][KZ];
+  }
+  const V4f e0 = x[2] * y[1] - y[2] * x[1];
+  const V4f e1 = x[0] * y[2] - y[0] * x[2];
+  const V4f e2 = x[1] * y[0] - y[1] * x[0];
+  const V4f zero = Splat(0.0f);
+  const V4i any_neg = (e0 < zero) | (e1 < zero) | (e2 < zero);
+  const V4i any_pos = (zero < e0) | (zero < e1) | (zero < e2);
+  const V4f det = (e0 + e1) + e2;
+  const V4i det_neg = det < zero;
+  V4i hit = ~(any_neg & any_pos) & (det_neg | (zero < det));
+  for (int k = 0; k < 3; ++k) z[k] = sz * p[k][KZ];
+  // a.Neg is a sign flip: the xor below, NaN and zero included.
+  const V4i flip = det_neg & static_cast<int32_t>(0x80000000u);
+  const V4f t_scaled =
+      leaf_x4::Floats(leaf_x4::Bits(((e0 * z[0]) + (e1 * z[1])) + (e2 * z[2])) ^ flip);
+  const V4f det_abs = leaf_x4::Floats(leaf_x4::Bits(det) ^ flip);
+  hit &= (Splat(r.tmin) * det_abs <= t_scaled) & (t_scaled <= Splat(tmax) * det_abs);
+  unsigned mask = 0;
+  for (uint32_t k = 0; k < n; ++k) mask |= (hit[k] != 0 ? 1u : 0u) << k;
+  if (mask == 0) return 0;
+  const V4f rcp = Splat(1.0f) / det_abs;
+  const V4f tt = t_scaled * rcp;
+  const V4f uu = leaf_x4::Floats(leaf_x4::Bits(e1) ^ flip) * rcp;
+  const V4f vv = leaf_x4::Floats(leaf_x4::Bits(e2) ^ flip) * rcp;
+  for (int k = 0; k < 4; ++k) {
+    out_t[k] = tt[k];
+    out_u[k] = uu[k];
+    out_v[k] = vv[k];
+  }
+  return mask;
+}
+
 }  // namespace leaf_x4
 
 // The watertight test of triangles tris[ids[0..n)] (n <= 4) against the ray
@@ -78,45 +124,16 @@ inline unsigned IntersectWatertightX4(const RaySetup<fp::NativeF32Arith>& r, con
                      leaf_x4::Row(*t[3], 1), c1);  // v1.y v1.z v2.x v2.y
   const V4f v2z{t[0]->v2[2], t[1]->v2[2], t[2]->v2[2], t[3]->v2[2]};
   const V4f vert[3][3] = {{c0[0], c0[1], c0[2]}, {c0[3], c1[0], c1[1]}, {c1[2], c1[3], v2z}};
-  V4f p[3][3];  // vertex - origin, per vertex and axis
-  for (int k = 0; k < 3; ++k) {
-    for (int i = 0; i < 3; ++i) p[k][i] = leaf_x4::Load(vert[k][i]) - Splat(r.o[i]);
+  // The ray's axis permutation as template arguments: indexed at run time,
+  // the per-axis values went through memory.
+  switch (r.kz * 3 + r.kx) {
+    case 0 * 3 + 1: return leaf_x4::TestX4<1, 2, 0>(r, vert, n, tmax, out_t, out_u, out_v);
+    case 0 * 3 + 2: return leaf_x4::TestX4<2, 1, 0>(r, vert, n, tmax, out_t, out_u, out_v);
+    case 1 * 3 + 2: return leaf_x4::TestX4<2, 0, 1>(r, vert, n, tmax, out_t, out_u, out_v);
+    case 1 * 3 + 0: return leaf_x4::TestX4<0, 2, 1>(r, vert, n, tmax, out_t, out_u, out_v);
+    case 2 * 3 + 0: return leaf_x4::TestX4<0, 1, 2>(r, vert, n, tmax, out_t, out_u, out_v);
+    default: return leaf_x4::TestX4<1, 0, 2>(r, vert, n, tmax, out_t, out_u, out_v);
   }
-  const V4f sx = Splat(r.sx), sy = Splat(r.sy), sz = Splat(r.sz);
-  V4f x[3], y[3], z[3];
-  for (int k = 0; k < 3; ++k) {
-    x[k] = p[k][r.kx] - sx * p[k][r.kz];
-    y[k] = p[k][r.ky] - sy * p[k][r.kz];
-  }
-  const V4f e0 = x[2] * y[1] - y[2] * x[1];
-  const V4f e1 = x[0] * y[2] - y[0] * x[2];
-  const V4f e2 = x[1] * y[0] - y[1] * x[0];
-  const V4f zero = Splat(0.0f);
-  const V4i any_neg = (e0 < zero) | (e1 < zero) | (e2 < zero);
-  const V4i any_pos = (zero < e0) | (zero < e1) | (zero < e2);
-  const V4f det = (e0 + e1) + e2;
-  const V4i det_neg = det < zero;
-  V4i hit = ~(any_neg & any_pos) & (det_neg | (zero < det));
-  for (int k = 0; k < 3; ++k) z[k] = sz * p[k][r.kz];
-  // a.Neg is a sign flip: the xor below, NaN and zero included.
-  const V4i flip = det_neg & static_cast<int32_t>(0x80000000u);
-  const V4f t_scaled =
-      leaf_x4::Floats(leaf_x4::Bits(((e0 * z[0]) + (e1 * z[1])) + (e2 * z[2])) ^ flip);
-  const V4f det_abs = leaf_x4::Floats(leaf_x4::Bits(det) ^ flip);
-  hit &= (Splat(r.tmin) * det_abs <= t_scaled) & (t_scaled <= Splat(tmax) * det_abs);
-  unsigned mask = 0;
-  for (uint32_t k = 0; k < n; ++k) mask |= (hit[k] != 0 ? 1u : 0u) << k;
-  if (mask == 0) return 0;
-  const V4f rcp = Splat(1.0f) / det_abs;
-  const V4f tt = t_scaled * rcp;
-  const V4f uu = leaf_x4::Floats(leaf_x4::Bits(e1) ^ flip) * rcp;
-  const V4f vv = leaf_x4::Floats(leaf_x4::Bits(e2) ^ flip) * rcp;
-  for (int k = 0; k < 4; ++k) {
-    out_t[k] = tt[k];
-    out_u[k] = uu[k];
-    out_v[k] = vv[k];
-  }
-  return mask;
 }
 
 #else
