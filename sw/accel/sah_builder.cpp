@@ -387,39 +387,42 @@ class SahBuilder {
     const uint32_t s = split.pos_bits;
     const float s_float = FromOrderedBits(s);
 
-    // Classify from the split axis' events (every triangle has a start or a
-    // planar event there).
+    // Classify from the split axis' events, in one pass: a triangle has a
+    // planar event there, or a start and then (at a larger position) an end.
+    // Its start says whether it lies above the plane, its end whether below;
+    // at its planar or end event its side is known. (The straddlers come out
+    // in the order of their ends; they are sorted or their events are,
+    // below.)
     const uint64_t* ev = arena_[k].data();
-    for (size_t i = node.begin[k]; i < node.end[k]; ++i) side_[EventTri(ev[i])] = kBoth;
+    uint32_t n_below = 0, n_above = 0;
+    straddlers_.clear();
     for (size_t i = node.begin[k]; i < node.end[k]; ++i) {
       const uint64_t e = ev[i];
       const uint32_t pos = EventPos(e);
       const uint32_t tri = EventTri(e);
       switch (EventKind(e)) {
-        case kEnd:
-          if (pos <= s) side_[tri] = kBelowOnly;
-          break;
         case kStart:
-          if (pos >= s) side_[tri] = kAboveOnly;
+          side_[tri] = pos >= s ? kAboveOnly : kBoth;
+          break;
+        case kEnd:
+          if (pos <= s) {
+            side_[tri] = kBelowOnly;
+            ++n_below;
+          } else if (side_[tri] == kAboveOnly) {
+            ++n_above;
+          } else {
+            straddlers_.push_back(tri);
+          }
           break;
         case kPlanar:
           if (pos < s || (pos == s && split.planar_below)) {
             side_[tri] = kBelowOnly;
+            ++n_below;
           } else {
             side_[tri] = kAboveOnly;
+            ++n_above;
           }
           break;
-      }
-    }
-    uint32_t n_below = 0, n_above = 0;
-    straddlers_.clear();
-    for (size_t i = node.begin[k]; i < node.end[k]; ++i) {
-      if (EventKind(ev[i]) == kEnd) continue;
-      const uint32_t tri = EventTri(ev[i]);
-      switch (side_[tri]) {
-        case kBelowOnly: ++n_below; break;
-        case kAboveOnly: ++n_above; break;
-        default: straddlers_.push_back(tri); break;
       }
     }
 
