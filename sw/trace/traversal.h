@@ -315,8 +315,10 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
       best.prim = id;
     }
   };
-  // Native fp32 on an fp32 image tests a leaf four triangles at a time, bit
-  // for bit the scalar tests (trace/leaf_x4.h).
+  // Native fp32 on an fp32 image tests a leaf of two or more triangles four
+  // at a time, bit for bit the scalar tests (trace/leaf_x4.h); a single
+  // triangle takes the scalar test (1-4 % faster than the four-wide one's
+  // gather on balls, tetra, gears and rings).
   bool four_wide = false;
   if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
     four_wide = KDRT_HAVE_LEAF_X4 && isect == IsectMethod::kWatertight && image.raw_triangles() != nullptr;
@@ -368,7 +370,7 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
       const uint32_t* ids = lists + n.FirstEntry();
       const typename Ai::T leaf_tmax = best.t;
       counted.tri_tests += count;
-      if (four_wide) {
+      if (four_wide && count > 1) {
   #if KDRT_HAVE_LEAF_X4
         if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
           for (uint32_t k = 0; k < count; k += 4) {
