@@ -54,6 +54,9 @@ inline uint32_t EventTri(uint64_t e) { return static_cast<uint32_t>(e) >> 2; }
 constexpr uint32_t kNegativeZeroBits = 0x7fffffffu;
 
 inline EventType EventKind(uint64_t e) { return static_cast<EventType>(e & 3u); }
+// Per EventType: an end counts in the low half, a start in the high half.
+constexpr uint64_t kEndStartCount[4] = {1, 0, uint64_t{1} << 32, 0};
+static_assert(kEnd == 0 && kPlanar == 1 && kStart == 2, "kEndStartCount is indexed by EventType");
 
 // std::allocator that leaves a resize's new elements uninitialised: the
 // event lists are resized before they are written, and zeroing them first
@@ -346,9 +349,15 @@ class SahBuilder {
       const size_t end = node.end[axis];
       while (i < end) {
         const uint32_t pos = EventPos(ev[i]);
-        uint32_t kinds[4] = {0, 0, 0, 0};  // indexed by EventType, branch-free
-        for (; i < end && EventPos(ev[i]) == pos; ++i) ++kinds[EventKind(ev[i])];
-        const uint32_t n_end = kinds[kEnd], n_planar = kinds[kPlanar], n_start = kinds[kStart];
+        // Ends and starts counted in the two halves of one register (a count
+        // array on the stack put a store and a reload on every event); the
+        // planars are the rest of the position's events.
+        const size_t first = i;
+        uint64_t ends_starts = 0;
+        for (; i < end && EventPos(ev[i]) == pos; ++i) ends_starts += kEndStartCount[EventKind(ev[i])];
+        const uint32_t n_end = static_cast<uint32_t>(ends_starts);
+        const uint32_t n_start = static_cast<uint32_t>(ends_starts >> 32);
+        const uint32_t n_planar = static_cast<uint32_t>(i - first) - n_end - n_start;
         if (pos > lo_bits && pos < hi_bits) {
           const uint32_t below = starts_before;
           const uint32_t above = n - ends_before - n_end - n_planar;
