@@ -509,19 +509,21 @@ class SahBuilder {
   }
 
   // Appends the children's lists on axis `a` to its arena: the node's
-  // events for which to_below (to_above) holds, in their order, with `room`
-  // free slots at the end of the below list and at the front of the above
-  // list; sets the children's ranges on `a` and returns where the two lists
-  // start.
-  template <class ToBelow, class ToAbove>
-  std::pair<uint64_t*, uint64_t*> PartitionEvents(const NodeEvents& node, int a, size_t room, ToBelow to_below,
-                                                  ToAbove to_above, NodeEvents* below, NodeEvents* above) {
+  // events, in their order, to the below list where bit 0 of where(e) is
+  // set and to the above list where bit 1 is, with `room` free slots at the
+  // end of the below list and at the front of the above list; sets the
+  // children's ranges on `a` and returns where the two lists start.
+  template <class Where>
+  std::pair<uint64_t*, uint64_t*> PartitionEvents(const NodeEvents& node, int a, size_t room, Where where,
+                                                  NodeEvents* below, NodeEvents* above) {
     // One pass over the node's events: the below list is written in place,
     // the above list past the most the below list can take, then moved down
     // next to it (a sequential copy costs less than a counting pass, whose
-    // lookups of side_ are random).
+    // lookups of side_ are random). The sides come from one lookup as a
+    // mask: no branch on them (they are random along the axis).
     EventList& arena = arena_[a];
-    const size_t len = node.end[a] - node.begin[a];
+    const size_t first = node.begin[a], stop = node.end[a];
+    const size_t len = stop - first;
     const size_t start = arena.size();
     arena.resize(start + 2 * (len + room));
     uint64_t* const out_b = arena.data() + start;
@@ -529,12 +531,13 @@ class SahBuilder {
     uint64_t* wb = out_b;
     uint64_t* wa = scratch_a;
     const uint64_t* const src = arena.data();
-    for (size_t i = node.begin[a]; i < node.end[a]; ++i) {
+    for (size_t i = first; i < stop; ++i) {
       const uint64_t e = src[i];
+      const unsigned m = where(e);
       *wb = e;
-      wb += to_below(e);
+      wb += m & 1u;
       *wa = e;
-      wa += to_above(e);
+      wa += m >> 1;
     }
     const size_t n_b = static_cast<size_t>(wb - out_b) + room;
     const size_t n_a_events = static_cast<size_t>(wa - scratch_a);
@@ -555,9 +558,11 @@ class SahBuilder {
   // sort and merge give: events are distinct keys). A third of building
   // strips and tree was sorting and merging these.
   void FilterEvents(const NodeEvents& node, int a, NodeEvents* below, NodeEvents* above) {
+    // Per Side: both children, below only, above only.
+    static constexpr uint8_t kMask[3] = {3, 1, 2};
+    const uint8_t* side = side_.data();
     PartitionEvents(
-        node, a, 0, [this](uint64_t e) { return side_[EventTri(e)] != kAboveOnly; },
-        [this](uint64_t e) { return side_[EventTri(e)] != kBelowOnly; }, below, above);
+        node, a, 0, [side](uint64_t e) { return unsigned{kMask[side[EventTri(e)]]}; }, below, above);
   }
 
   // The children's lists on the split axis without clipping. A straddling
@@ -572,17 +577,14 @@ class SahBuilder {
     straddler_ids_.assign(straddlers_.begin(), straddlers_.end());
     std::sort(straddler_ids_.begin(), straddler_ids_.end());
     const size_t n_s = straddler_ids_.size();
+    // Per Side and EventType: a one-sided triangle's events go to its side,
+    // a straddler's start below and its end above (a straddler has no
+    // planar event).
+    static constexpr uint8_t kMask[3][4] = {{2, 0, 1, 0}, {1, 1, 1, 0}, {2, 2, 2, 0}};
+    const uint8_t* side = side_.data();
     const auto [out_b, out_a] = PartitionEvents(
-        node, k, n_s,
-        [this](uint64_t e) {
-          const uint8_t side = side_[EventTri(e)];
-          return side == kBelowOnly || (side == kBoth && EventKind(e) == kStart);
-        },
-        [this](uint64_t e) {
-          const uint8_t side = side_[EventTri(e)];
-          return side == kAboveOnly || (side == kBoth && EventKind(e) == kEnd);
-        },
-        below, above);
+        node, k, n_s, [side](uint64_t e) { return unsigned{kMask[side[EventTri(e)]][EventKind(e)]}; }, below,
+        above);
     const size_t n_b = below->end[k] - below->begin[k], n_a = above->end[k] - above->begin[k];
     const uint64_t plane = uint64_t{plane_bits} << 32;
     // Below: merged from the back; the write position never passes the read one.
