@@ -55,19 +55,9 @@ Scene ToFrame(const Scene& world, const Frame& frame) {
 }
 
 FramedRay ToFrame(const Ray& world, const Frame& frame) {
-  FramedRay r;
-  uint32_t max_exp = 0;
-  for (int i = 0; i < 3; ++i) {
-    const uint32_t o = fp::Sub(kF32, fp::BitsOf(world.o[i]), fp::BitsOf(frame.origin[i]));
-    r.ray.o[i] = fp::FloatOf(fp::Ldexp(kF32, o, frame.scale_log2));
-    max_exp = std::max(max_exp, (fp::BitsOf(world.d[i]) >> 23) & 0xFFu);
-  }
-  const int m = max_exp == 0 ? 0 : 127 - static_cast<int>(max_exp);
-  for (int i = 0; i < 3; ++i) r.ray.d[i] = Ldexp32(world.d[i], m);
-  r.t_scale_log2 = m - frame.scale_log2;
-  r.ray.tmin = Ldexp32(world.tmin, -r.t_scale_log2);
-  r.ray.tmax = Ldexp32(world.tmax, -r.t_scale_log2);
-  return r;
+  return MapToFrame(
+      world, frame,
+      [](float a, float b) { return fp::FloatOf(fp::Sub(kF32, fp::BitsOf(a), fp::BitsOf(b))); }, Ldexp32);
 }
 
 float DistanceToWorld(float t, int32_t t_scale_log2) { return Ldexp32(t, t_scale_log2); }

@@ -60,6 +60,26 @@ struct FramedRay {
 };
 FramedRay ToFrame(const Ray& world, const Frame& frame);
 
+// ToFrame's rule on the subtraction and the power-of-two scaling it is
+// given: sub(a, b) = a - b and scale(x, n) = x * 2^n in fp32 under the
+// policy above (ToFrame: the soft-float ones; ToFrameFtz below: native).
+template <class Sub, class Scale>
+FramedRay MapToFrame(const Ray& world, const Frame& frame, Sub sub, Scale scale) {
+  FramedRay r;
+  uint32_t max_exp = 0;
+  for (int i = 0; i < 3; ++i) {
+    r.ray.o[i] = scale(sub(world.o[i], frame.origin[i]), frame.scale_log2);
+    const uint32_t e = (fp::BitsOf(world.d[i]) >> 23) & 0xFFu;
+    max_exp = e > max_exp ? e : max_exp;
+  }
+  const int m = max_exp == 0 ? 0 : 127 - static_cast<int>(max_exp);
+  for (int i = 0; i < 3; ++i) r.ray.d[i] = scale(world.d[i], m);
+  r.t_scale_log2 = m - frame.scale_log2;
+  r.ray.tmin = scale(world.tmin, -r.t_scale_log2);
+  r.ray.tmax = scale(world.tmax, -r.t_scale_log2);
+  return r;
+}
+
 // ldexp(t, t_scale_log2) in fp32 under the same policy (exact unless the
 // result leaves the normal range: then a signed zero or an infinity).
 float DistanceToWorld(float t, int32_t t_scale_log2);
@@ -96,19 +116,9 @@ inline FramedRay ToFrameFtz(const Ray& world, const Frame& frame) {
   // where a scale is a constant 1 the compiler folds the product away, and
   // with it DAZ.
   const auto in = [](float x) { return fp::NativeF32Arith::Load(x); };
-  FramedRay r;
-  uint32_t max_exp = 0;
-  for (int i = 0; i < 3; ++i) {
-    r.ray.o[i] = ScalePow2Ftz(in(world.o[i]) - in(frame.origin[i]), frame.scale_log2);
-    const uint32_t e = (fp::BitsOf(world.d[i]) >> 23) & 0xFFu;
-    max_exp = e > max_exp ? e : max_exp;
-  }
-  const int m = max_exp == 0 ? 0 : 127 - static_cast<int>(max_exp);
-  for (int i = 0; i < 3; ++i) r.ray.d[i] = ScalePow2Ftz(in(world.d[i]), m);
-  r.t_scale_log2 = m - frame.scale_log2;
-  r.ray.tmin = ScalePow2Ftz(in(world.tmin), -r.t_scale_log2);
-  r.ray.tmax = ScalePow2Ftz(in(world.tmax), -r.t_scale_log2);
-  return r;
+  return MapToFrame(
+      world, frame, [&in](float a, float b) { return in(a) - in(b); },
+      [&in](float x, int n) { return ScalePow2Ftz(in(x), n); });
 }
 
 inline float DistanceToWorldFtz(float t, int32_t t_scale_log2) {
