@@ -2,8 +2,8 @@
 // Both trace the same primary rays single-threaded (our TraceRays with one
 // thread, Embree's rtcIntersect1 in a loop); only tracing is timed, no file
 // I/O, and each side's time is the fastest of --repeat runs (this machine's
-// timings of one run vary by 5-20 %). Build times: our SAH kd-tree against Embree's high-quality BVH build,
-// both single-threaded.
+// timings of one run vary by 5-20 %). Build times: our SAH kd-tree against
+// Embree's high-quality BVH build, both single-threaded.
 #include <algorithm>
 #include <chrono>
 #include <cmath>

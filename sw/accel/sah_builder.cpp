@@ -106,7 +106,6 @@ void RadixSort(EventList* keys, EventList* tmp) {
 
 constexpr int kMaxBadRefines = 3;  // pbrt-v3's limit
 
-
 enum Side : uint8_t { kBoth = 0, kBelowOnly = 1, kAboveOnly = 2 };
 
 // A node's triangles: per axis, a range of the axis' event arena.
@@ -574,9 +573,8 @@ class SahBuilder {
   // and the head (above), in place: only the straddlers' ids are sorted.
   void SplitAxisEvents(const NodeEvents& node, int k, uint32_t plane_bits, NodeEvents* below,
                        NodeEvents* above) {
-    straddler_ids_.assign(straddlers_.begin(), straddlers_.end());
-    std::sort(straddler_ids_.begin(), straddler_ids_.end());
-    const size_t n_s = straddler_ids_.size();
+    std::sort(straddlers_.begin(), straddlers_.end());  // no longer needed in their end order
+    const size_t n_s = straddlers_.size();
     // Per Side and EventType: a one-sided triangle's events go to its side,
     // a straddler's start below and its end above (a straddler has no
     // planar event).
@@ -590,7 +588,7 @@ class SahBuilder {
     // Below: merged from the back; the write position never passes the read one.
     size_t r = n_b - n_s, w = n_b;
     for (size_t j = n_s; j > 0;) {
-      const uint64_t e = plane | (uint64_t{straddler_ids_[j - 1]} << 2) | kEnd;
+      const uint64_t e = plane | (uint64_t{straddlers_[j - 1]} << 2) | kEnd;
       if (r > 0 && out_b[r - 1] > e) {
         out_b[--w] = out_b[--r];
       } else {
@@ -602,7 +600,7 @@ class SahBuilder {
     r = n_s;
     w = 0;
     for (size_t j = 0; j < n_s;) {
-      const uint64_t e = plane | (uint64_t{straddler_ids_[j]} << 2) | kStart;
+      const uint64_t e = plane | (uint64_t{straddlers_[j]} << 2) | kStart;
       if (r < n_a && out_a[r] < e) {
         out_a[w++] = out_a[r++];
       } else {
@@ -629,10 +627,10 @@ class SahBuilder {
   const bool perfect_;
   TreeWriter* writer_;
 
-  EventList arena_[3];  // stack of event lists, one per axis
-  std::vector<uint8_t> side_;       // per triangle id, valid while splitting a node
+  EventList arena_[3];         // stack of event lists, one per axis
+  std::vector<uint8_t> side_;  // per triangle id, valid while splitting a node
   // Scratch reused by every node, so the hot loops do not allocate.
-  std::vector<uint32_t> straddlers_, straddler_ids_;
+  std::vector<uint32_t> straddlers_;
   EventList new_below_[3], new_above_[3];
   EventList kept_below_, kept_above_;
   std::vector<uint32_t> leaf_ids_;

@@ -271,7 +271,7 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
   best.t = r.tmax;
   best.u = best.v = ai.Zero();
 
-  // Counted in a local (registers), added to *counters on every return.
+  // Counted in a local, added to *counters once, on whichever return.
   struct CountOnExit {
     RayCounters local;
     RayCounters* out;
@@ -371,7 +371,7 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
       const typename Ai::T leaf_tmax = best.t;
       counted.tri_tests += count;
       if (four_wide && count > 1) {
-  #if KDRT_HAVE_LEAF_X4
+#if KDRT_HAVE_LEAF_X4
         if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
           for (uint32_t k = 0; k < count; k += 4) {
             float ct[4], cu[4], cv[4];
@@ -383,7 +383,7 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
             }
           }
         }
-  #endif
+#endif
       } else {
         for (uint32_t k = 0; k < count; ++k) {
           const uint32_t id = ids[k];
