@@ -41,20 +41,6 @@ void SetWide(uint32_t* words, int count, const uint32_t* values) {
 
 }  // namespace
 
-RayQueue::RayQueue(size_t count, int cores, size_t chunk)
-    : count_(count), chunk_(chunk > 0 ? chunk : 1), cur_(cores, 0), end_(cores, 0) {}
-
-bool RayQueue::Take(int core, size_t* id) {
-  if (cur_[core] >= end_[core]) {
-    if (next_ >= count_) return false;
-    cur_[core] = next_;
-    end_[core] = std::min(count_, next_ + chunk_);
-    next_ = end_[core];
-  }
-  *id = cur_[core]++;
-  return true;
-}
-
 CoreHarness::CoreHarness(Vrt_core& top, const ImageView& image, const std::vector<Ray>& rays,
                          const std::vector<Hit>& reference, MemoryPort& memory, const HarnessOptions& options,
                          RayQueue* queue, int core)

@@ -21,6 +21,7 @@
 
 #include "common/ray.h"
 #include "sim/memory_model.h"
+#include "sim/ray_queue.h"
 #include "sim/run_result.h"
 #include "trace/memory_image.h"
 #include "trace/tracer.h"
@@ -37,25 +38,6 @@ class SimCtrl;
 class SimFailure : public std::runtime_error {
  public:
   explicit SimFailure(const std::string& what) : std::runtime_error(what) {}
-};
-
-// Hands out ray ids (indices in the ray list) to one or several cores, in
-// order, a chunk of consecutive rays at a time: a core takes its chunk's
-// rays one by one and then the next free chunk (kdrt sim --cores N shares
-// one queue between all cores, docs/simulator.md).
-class RayQueue {
- public:
-  RayQueue(size_t count, int cores, size_t chunk);
-  bool Take(int core, size_t* id);
-  // Nothing is left for `core` (its chunk is used up and no chunk is free).
-  bool Exhausted(int core) const { return cur_[core] >= end_[core] && next_ >= count_; }
-  size_t count() const { return count_; }
-  size_t returned() const { return returned_; }
-  void Returned() { ++returned_; }
-
- private:
-  size_t count_, chunk_, next_ = 0, returned_ = 0;
-  std::vector<size_t> cur_, end_;
 };
 
 struct HarnessOptions {

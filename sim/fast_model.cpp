@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "sim/ray_queue.h"
 #include "sim/ring.h"
 #include "trace/tracer.h"
 
@@ -359,6 +361,7 @@ struct Step {
 
 struct Thread {
   State state = kFree;
+  uint32_t ray = 0;            // its ray's id
   const Step* next = nullptr;  // the path step fetched next (or being fetched)
   const Step* end = nullptr;   // the end of the ray's path
   uint32_t remaining = 0, outstanding = 0;
@@ -381,19 +384,23 @@ struct Stage {
   int thread;
 };
 
-}  // namespace
+// Every ray's path from the reference traversal, decoded into steps.
+struct RayPaths {
+  std::vector<Step> steps;   // the paths in ray order: the rays in flight are neighbours
+  std::vector<size_t> begin;  // ray r's steps are [begin[r], begin[r + 1])
+};
 
-RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
+// The reference traversal of every ray of `spec`: its hit and counters, and
+// its path (the nodes it fetches, each leaf's list entries).
+RayPaths TraceReference(const FastSpec& spec, FastReference* ref) {
   const ImageView& image = *spec.image;
   const std::vector<Ray>& rays = *spec.rays;
   const CoreConfig& cfg = spec.config;
   const img::ImageLayout layout = image.layout();
   const img::Header& h = image.header();
-
-  // What each ray does, from the reference traversal of the same image.
-  RunOutcome out;
-  out.result.hits.resize(rays.size());
-  out.result.overflow.assign(rays.size(), 0);
+  ref->hits.resize(rays.size());
+  ref->overflow.assign(rays.size(), 0);
+  ref->per_ray.assign(rays.size(), RayCounters{});
   std::vector<std::vector<uint32_t>> paths(rays.size());
   TraceOptions to;
   to.format = cfg.Format();
@@ -403,18 +410,15 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   // (StackDepth below the tree's depth, --allow-overflow): its thread goes
   // from TRAV to DONE, and its record is the hit it had (rt_thread_fsm).
   to.stack_depth = cfg[kStackDepth];
-  RayCounters totals;
   for (size_t i = 0; i < rays.size(); ++i) {
-    RayCounters c;
-    out.result.hits[i] = TraceOne(image, rays[i], to, &c, &paths[i]);
-    out.result.hit_count += out.result.hits[i].IsHit();
-    out.result.overflow[i] = c.overflows > 0;
-    out.result.overflows += c.overflows > 0;
-    totals += c;
+    RayCounters& c = ref->per_ray[i];
+    ref->hits[i] = TraceOne(image, rays[i], to, &c, &paths[i]);
+    ref->overflow[i] = c.overflows > 0;
+    ref->overflows += c.overflows > 0;
+    ref->totals += c;
   }
-  if (reference_totals) *reference_totals = totals;
-  // The paths decoded into steps, one array in ray order: the rays in flight
-  // are neighbours in it (a table by node index costs a cache miss a fetch).
+  // The paths decoded into steps, one array in ray order (a table by node
+  // index costs a cache miss a fetch).
   uint32_t max_node = 0;
   size_t n_steps = 0;
   for (const auto& p : paths) {
@@ -423,9 +427,9 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   }
   std::vector<Step> nodes(max_node + 1u);
   std::vector<uint8_t> decoded(max_node + 1u, 0);
-  std::vector<Step> steps;
-  steps.reserve(n_steps);
-  std::vector<size_t> path_begin(rays.size() + 1, 0);
+  RayPaths out;
+  out.steps.reserve(n_steps);
+  out.begin.assign(rays.size() + 1, 0);
   for (size_t r = 0; r < rays.size(); ++r) {
     for (uint32_t i : paths[r]) {
       if (!decoded[i]) {
@@ -437,343 +441,539 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
           nodes[i].first = n.FirstEntry();
         }
       }
-      steps.push_back(nodes[i]);
+      out.steps.push_back(nodes[i]);
     }
-    path_begin[r + 1] = steps.size();
+    out.begin[r + 1] = out.steps.size();
     std::vector<uint32_t>().swap(paths[r]);
   }
+  return out;
+}
+
+// The memory is asked for its beat only in the cycles it may have one ready
+// when its token bucket comes out the same however the refill is split: with
+// a bandwidth of whole 2^-20 bytes every sum is exact (and a sum too large to
+// be exact is over the bucket's size anyway).
+bool LazyMemory(const MemoryConfig& memory) {
+  const double bw_units = std::ldexp(memory.bytes_per_cycle, 20);
+  return bw_units == std::floor(bw_units) && bw_units < std::ldexp(1.0, 40);
+}
+
+// A core's port on the shared L2 (SharedL2::port without the virtual call).
+class L2Port {
+ public:
+  L2Port(SharedL2& l2, int core) : l2_(&l2), core_(core) {}
+  void Request(uint64_t addr, uint16_t tag, uint64_t cycle) { l2_->Request(core_, addr, tag, cycle); }
+  bool Respond(uint64_t cycle, MemoryResponse* out) { return l2_->Respond(core_, cycle, out); }
+  uint64_t next_ready_cycle() const { return l2_->next_ready_cycle(core_); }
+
+ private:
+  SharedL2* l2_;
+  int core_;
+};
+
+// One rt_core, cycle by cycle, on a memory port `Mem` (the MemoryModel
+// itself, or its port on the shared L2): Request, Respond and
+// next_ready_cycle as MemoryModel has them. Rays come from a RayQueue as the
+// RTL harness takes them (BeginCycle: a ray is taken when none is pending,
+// and offered until a free thread accepts it).
+template <class Mem>
+class FastCore {
+ public:
+  // `lazy_memory`: `mem` needs to be asked for a beat only from its
+  // next_ready_cycle() on.
+  FastCore(const FastSpec& spec, const RayPaths& paths, const FastReference& ref, Mem& mem, RayQueue& queue,
+           int index, bool lazy_memory)
+      : paths_(paths), ref_(ref), mem_(mem), queue_(queue), index_(index), lazy_(lazy_memory),
+        timeout_(spec.timeout), threads_(spec.config[kThreads]),
+        node_(spec.config[kNodeCacheLines], spec.config[kCacheWays], 2, spec.config[kCacheMshrs],
+              spec.config[kCacheTargets], true),
+        list_(spec.config[kListCacheLines], spec.config[kCacheWays], 2, spec.config[kCacheMshrs],
+              spec.config[kCacheTargets], false),
+        tri_(spec.config[kTriCacheLines], spec.config[kCacheWays], spec.image->layout().TriangleLineBeats(),
+             spec.config[kCacheMshrs], spec.config[kCacheTargets], false),
+        th_(threads_), fetch_arb_(threads_), fetch2_arb_(threads_), exit_arb_(threads_), out_arb_(threads_),
+        moves_(static_cast<size_t>(threads_)), since_(static_cast<size_t>(threads_), 0),
+        clip_pipe_(threads_, true), trav_pipe_(threads_, true), jobs_(threads_, true),
+        lists_(spec.image->lists()), header_(spec.image->header()) {
+    const CoreConfig& cfg = spec.config;
+    const int m = cfg.Format().m;
+    // Ray setup and clip (rt_ray_setup M + 8, rt_clip_unit 11) and the
+    // traversal step (8); a wider traversal (TravE, TravM) has its reciprocal
+    // divider (3 + TravM + 4) and one more stage in clip and traversal step
+    // (rounding the cell ends outwards into the core's format).
+    const bool mixed = cfg.TravFormat() != cfg.Format();
+    const int setup = std::max(m + 8, mixed ? cfg.TravFormat().m + 7 : 0);
+    lat_clip_ = static_cast<uint64_t>(setup) + 11 + (mixed ? 1 : 0);
+    lat_trav_ = 8 + (mixed ? 1 : 0);
+    lat_isect_ = static_cast<uint64_t>(m) + 34;
+    // The pipelines take at most one thread a cycle: setup/clip and traversal
+    // hold each thread at most once, intersection at most one test a cycle of
+    // its latency.
+    isect_pipe_ = Ring<Stage>(lat_isect_ + 1, true);
+    in_set_.fill(ThreadSet(threads_));
+    for (int t = 0; t < threads_; ++t) in_set_[kFree].Set(t);
+    in_state_[kFree] = static_cast<uint64_t>(threads_);
+    // The triangle cache's lines hold P records (img::ImageLayout): a line is
+    // named by id / P.
+    const img::ImageLayout layout = spec.image->layout();
+    tri_per_line_ = static_cast<uint32_t>(layout.TrianglesPerLine());
+    tri_line_bytes_ = layout.TriangleLineBytes();
+  }
+
+  // The RTL harness's Done(), checked before each cycle: no ray pending or in
+  // flight, and none left in the queue for this core.
+  bool Done() const { return !has_pending_ && in_flight_ == 0 && queue_.Exhausted(index_); }
+
+  // Nothing in this core can change before its next event (NextEvent, or a
+  // beat from its memory port): every thread waits on a pipeline or the
+  // memory, no cache has anything to show or send, no ray is to be taken.
+  bool Quiet() const {
+    return !record_valid_ && in_state_[kFetch] == 0 && in_state_[kExit] == 0 && in_state_[kDone] == 0 &&
+           !(has_pending_ ? in_state_[kFree] > 0 : !queue_.Exhausted(index_)) && n_leaf_done_ == 0 &&
+           !list_req_valid_ && jobs_.empty() && node_.Quiet() && list_.Quiet() && tri_.Quiet() && !Done();
+  }
+  // The first cycle a pipeline delivers (UINT64_MAX: none busy).
+  uint64_t NextEvent() const {
+    uint64_t next = UINT64_MAX;
+    for (const Ring<Stage>* pipe : {&clip_pipe_, &trav_pipe_, &isect_pipe_}) {
+      if (!pipe->empty()) next = std::min(next, pipe->front().cycle);
+    }
+    return next;
+  }
+  // Cycles [from, to) skipped while Quiet(): no progress, so a memory stall
+  // whenever a cache waits on the memory (no thread is in EXIT, so no stack
+  // stall).
+  void Skip(uint64_t from, uint64_t to) {
+    if (Busy() && (node_.MemWait() || list_.MemWait() || tri_.MemWait())) perf()[kBitStallMem] += to - from;
+  }
+
+  // One clock cycle (after Done() was false).
+  void Cycle(uint64_t cycle);
+
+  // After the core's last cycle (`cycles` = the cycle Done() first held).
+  void Finish(uint64_t cycles, RunOutcome* out) {
+    // The counts of the last cycle's states.
+    for (int t = 0; t < threads_; ++t) result_.thread_states[th_[t].state] += cycles - since_[t];
+    if (Busy()) perf()[kBitBusy] += cycles - busy_since_;
+    result_.cycles = cycles;
+    const Cache::Events* ev[3] = {&node_.events(), &list_.events(), &tri_.events()};
+    const char* names[3] = {"node", "list", "tri"};
+    for (int k = 0; k < 3; ++k) {
+      const std::string n = names[k];
+      perf()[PerfBit(n + "_hit")] += ev[k]->hit;
+      perf()[PerfBit(n + "_miss")] += ev[k]->miss;
+      perf()[PerfBit(n + "_merge")] += ev[k]->merge;
+      perf()[PerfBit(n + "_wait")] += ev[k]->wait;
+      perf()[PerfBit(n + "_wait_inflight")] += ev[k]->wait_inflight;
+      perf()[PerfBit(n + "_wait_mshr")] += ev[k]->wait_mshr;
+    }
+    out->result = std::move(result_);
+  }
+
+ private:
+  std::array<uint64_t, kPerfBits>& perf() { return result_.perf; }
+  bool Busy() const { return in_state_[kFree] != static_cast<uint64_t>(threads_); }
+  void Move(int t, State to_state) { moves_[n_moves_++] = {t, to_state}; }
+
+  const RayPaths& paths_;
+  const FastReference& ref_;
+  Mem& mem_;
+  RayQueue& queue_;
+  int index_;
+  bool lazy_;
+  uint64_t timeout_;
+  int threads_;
+  uint64_t lat_clip_ = 0, lat_trav_ = 0, lat_isect_ = 0;
+  Cache node_, list_, tri_;
+  std::vector<Thread> th_;
+  RrArb fetch_arb_, fetch2_arb_, exit_arb_, out_arb_;
+  int mem_last_ = 2;  // the memory arbiter's last grant (rt_rr_arb over the three caches)
+  // The threads in each state (the ray input and the arbiters pick from FREE,
+  // FETCH, EXIT and DONE), kept up to date by the moves below.
+  std::array<ThreadSet, 8> in_set_;
+  std::array<uint64_t, 8> in_state_{};  // threads per state
+  // The state changes of this cycle, applied at the clock edge (one per
+  // thread at most).
+  std::vector<std::pair<int, State>> moves_;
+  size_t n_moves_ = 0;
+  // The thread-state and busy counts accrue at the clock edges that change
+  // them: a thread's cycles in a state when it leaves it, the busy cycles
+  // when the core goes idle (and both at the end).
+  std::vector<uint64_t> since_;  // in th_[t].state since this cycle
+  uint64_t busy_since_ = 0;
+  Ring<Stage> clip_pipe_, trav_pipe_, isect_pipe_{1, true};
+  Ring<Job> jobs_;  // rt_list_unit's FIFO (a thread has one job at most)
+  bool list_req_valid_ = false;
+  Job list_job_{};
+  uint32_t list_k_ = 0;  // entries of list_job_ requested so far
+  // The harness's side: the ray offered (ray_valid_i), the rays in flight.
+  bool has_pending_ = false;
+  size_t pending_ray_ = 0;
+  uint64_t in_flight_ = 0;
+  bool record_valid_ = false;  // rt_hit_out's register: a record leaves this cycle
+  uint32_t record_ray_ = 0;
+  uint64_t last_record_ = 0;
+  const uint32_t* lists_;
+  const img::Header& header_;
+  uint32_t tri_per_line_ = 1;
+  uint64_t tri_line_bytes_ = 0;
+  // LEAF -> EXIT once the tests issued and returned (registered counts) are
+  // both zero. Only a test issued or retired can make them so, at most one of
+  // each a cycle: the threads found at one clock edge move in the next cycle.
+  std::array<int, 2> leaf_done_{};
+  int n_leaf_done_ = 0;
+  HarnessResult result_;
+};
+
+template <class Mem>
+void FastCore<Mem>::Cycle(uint64_t cycle) {
+  // The harness's next ray (BeginCycle): taken when none is pending.
+  if (!has_pending_) has_pending_ = queue_.Take(index_, &pending_ray_);
+  // The memory's beat of this cycle, routed by {cache, register, beat}.
+  MemoryResponse resp;  // (its data is not used)
+  int resp_cache = -1, resp_id = -1;
+  if ((!lazy_ || mem_.next_ready_cycle() <= cycle) && mem_.Respond(cycle, &resp)) {
+    resp_cache = resp.tag >> 8;
+    resp_id = resp.tag & 0xFF;
+  }
+  const int alloc = has_pending_ ? in_set_[kFree].Lowest() : -1;
+  for (int k = 0; k < n_leaf_done_; ++k) Move(leaf_done_[k], kExit);
+  // A record leaves the core (hit_valid_o): the harness takes it.
+  auto& perf = result_.perf;
+  if (record_valid_) {
+    ++perf[kBitRayOut];
+    result_.ray_ids.push_back(record_ray_);
+    result_.hit_count += ref_.hits[record_ray_].IsHit();
+    result_.overflows += ref_.overflow[record_ray_];
+    queue_.Returned();
+    last_record_ = cycle;
+  }
+  if (cycle - last_record_ > timeout_) {
+    throw std::runtime_error("fast model: no hit record for " + std::to_string(timeout_) + " cycles");
+  }
+
+  // Ray in: the lowest free thread takes the harness's ray.
+  if (alloc >= 0) {
+    th_[alloc].ray = static_cast<uint32_t>(pending_ray_);
+    th_[alloc].next = paths_.steps.data() + paths_.begin[pending_ray_];
+    th_[alloc].end = paths_.steps.data() + paths_.begin[pending_ray_ + 1];
+    has_pending_ = false;
+    // The harness counts a ray taken before a record returned in the same
+    // cycle (EndCycle).
+    if (++in_flight_ > result_.max_in_flight) result_.max_in_flight = in_flight_;
+    Move(alloc, kSetup);
+    clip_pipe_.push({cycle + lat_clip_, alloc});
+    ++perf[kBitRayIn];
+  }
+  if (record_valid_) {
+    --in_flight_;
+    record_valid_ = false;
+  }
+  // Setup and clip done: into FETCH, or DONE when the ray misses the box.
+  const bool clip_out = !clip_pipe_.empty() && clip_pipe_.front().cycle == cycle;
+  if (clip_out) {
+    const int t = clip_pipe_.front().thread;
+    clip_pipe_.pop();
+    Move(t, th_[t].next == th_[t].end ? kDone : kFetch);
+  }
+  const bool trav_out = !trav_pipe_.empty() && trav_pipe_.front().cycle == cycle;
+  if (trav_out) {
+    const int t = trav_pipe_.front().thread;
+    trav_pipe_.pop();
+    const bool overflow = th_[t].next == th_[t].end;  // the push met a full stack
+    Move(t, overflow ? kDone : kFetch);
+    if (overflow) ++perf[kBitOverflow];
+  }
+  // The test retired this cycle (isect_valid), if any.
+  int retired = -1;
+  if (!isect_pipe_.empty() && isect_pipe_.front().cycle == cycle) {
+    retired = isect_pipe_.front().thread;
+    isect_pipe_.pop();
+  }
+
+  // Node fetches: two arbiters, the second offered to the miss-only port.
+  ThreadSet& fetching = in_set_[kFetch];
+  const int f1 = in_state_[kFetch] > 0 ? fetch_arb_.Pick(fetching) : -1;
+  Cache::Req n1, n2;
+  int f2 = -1;
+  if (f1 >= 0) {
+    fetching.Reset(f1);
+    f2 = fetch2_arb_.Pick(fetching);
+    fetching.Set(f1);
+    n1.valid = true;
+    n1.key = th_[f1].next->key;
+    n1.addr = n1.key << 5;
+    n1.tag = static_cast<uint64_t>(f1);
+  }
+  if (f2 >= 0) {
+    n2.valid = true;
+    n2.key = th_[f2].next->key;
+    n2.addr = n2.key << 5;
+    n2.tag = static_cast<uint64_t>(f2);
+  }
+  // The node response (registered) fires: the units are always ready.
+  const bool node_fire = node_.resp_valid();
+  const int node_tag = node_fire ? static_cast<int>(node_.resp_tag()) : -1;
+  node_.Eval(n1, n2, true);
+  fetch_arb_.Ack(f1);
+  fetch2_arb_.Ack(f2);
+  if (node_.accept1()) Move(f1, kWaitNode);
+  if (node_.accept2()) Move(f2, kWaitNode);
+  Job new_job{};  // a leaf's job for the list unit's FIFO
+  bool has_new_job = false;
+  bool trav_in = false;
+  if (node_fire) {
+    Thread& t = th_[node_tag];
+    const Step& n = *t.next;
+    ++t.next;
+    if (n.count == kInner) {
+      trav_in = true;
+      Move(node_tag, kTrav);
+      trav_pipe_.push({cycle + lat_trav_, node_tag});
+      ++perf[kBitTravBusy];
+    } else {
+      ++perf[kBitTravLeaf];
+      if (n.count > 0) {
+        Move(node_tag, kLeaf);
+        t.remaining = n.count;
+        new_job = {node_tag, n.first, n.count};
+        has_new_job = true;
+      } else {
+        Move(node_tag, kExit);
+      }
+    }
+  }
+
+  // The list unit's request (registered), the list cache, the triangle
+  // cache behind it (its request is the list cache's response).
+  Cache::Req lr;
+  if (list_req_valid_) {
+    const uint64_t addr = header_.list_offset + uint64_t{list_job_.first + list_k_} * img::kListEntryBytes;
+    lr = {true, addr >> 5, (addr >> 5) << 5, uint64_t(list_job_.thread) << 32 | (list_job_.first + list_k_)};
+  }
+  Cache::Req trq;
+  if (list_.resp_valid()) {
+    const uint64_t tag = list_.resp_tag();
+    const uint32_t id = lists_[tag & 0xFFFFFFFFu];
+    const uint32_t line = id / tri_per_line_;
+    trq = {true, line, header_.tri_offset + uint64_t{line} * tri_line_bytes_, (tag >> 32) << 32 | id};
+  }
+  const bool tri_fire = tri_.resp_valid();
+  const int tri_thread = tri_fire ? static_cast<int>(tri_.resp_tag() >> 32) : -1;
+  tri_.Eval(trq, Cache::Req{}, true);
+  list_.Eval(lr, Cache::Req{}, tri_.accept1());
+  const bool list_fire = list_req_valid_ && list_.accept1();
+  // rt_perf_events' list_busy: an entry requested or one answered (its
+  // triangle taken by the triangle cache).
+  const bool entry_fire = trq.valid && tri_.accept1();
+  if (list_fire || entry_fire) ++perf[kBitListBusy];
+  if (tri_fire) {
+    isect_pipe_.push({cycle + lat_isect_, tri_thread});
+    ++perf[kBitIsectBusy];
+  }
+
+  // The memory arbiter: one beat a cycle, round robin over the caches (the
+  // first requester after the last grant).
+  Cache* caches[3] = {&node_, &list_, &tri_};
+  const unsigned mreq = node_.mem_valid() | list_.mem_valid() << 1 | tri_.mem_valid() << 2;
+  const int g = kMemPick[mem_last_][mreq];
+  if (g >= 0) {
+    mem_last_ = g;
+    mem_.Request(caches[g]->mem_addr(), static_cast<uint16_t>(g << 8 | caches[g]->mem_id()), cycle);
+    ++result_.mem_requests;
+  }
+
+  // Leaf exits and records out.
+  const int ex = in_state_[kExit] > 0 ? exit_arb_.Pick(in_set_[kExit]) : -1;
+  exit_arb_.Ack(ex);
+  if (ex >= 0) Move(ex, th_[ex].next == th_[ex].end ? kDone : kFetch);
+  const int o = in_state_[kDone] > 0 ? out_arb_.Pick(in_set_[kDone]) : -1;
+  out_arb_.Ack(o);
+  if (o >= 0) {
+    Move(o, kFree);
+    record_valid_ = true;
+    record_ray_ = th_[o].ray;
+  }
+
+  // rt_perf_events' stalls from this cycle's registered state and moves: a
+  // memory stall when a thread is busy, nothing progresses and a cache
+  // waits on the memory; a stack stall when a thread in EXIT is not taken.
+  // (The units and the harness are always ready: no backpressure.)
+  const bool any_progress = trav_in || list_fire || entry_fire || tri_fire || ex >= 0 || o >= 0 || alloc >= 0 ||
+                            clip_out || trav_out || retired >= 0;
+  if (Busy() && !any_progress && (node_.MemWait() || list_.MemWait() || tri_.MemWait())) ++perf[kBitStallMem];
+  if (in_state_[kExit] > (ex >= 0 ? 1u : 0u)) ++perf[kBitStallStack];
+
+  // LEAF: the counters of tests issued and returned.
+  if (tri_fire) {
+    --th_[tri_thread].remaining;
+    ++th_[tri_thread].outstanding;
+  }
+  if (retired >= 0) --th_[retired].outstanding;
+
+  // The clock edge.
+  node_.Commit(g == 0, resp_cache == 0 ? resp_id : -1);
+  list_.Commit(g == 1, resp_cache == 1 ? resp_id : -1);
+  tri_.Commit(g == 2, resp_cache == 2 ? resp_id : -1);
+  // rt_list_unit: the request register and the job FIFO.
+  const bool queued = !jobs_.empty();
+  if (list_fire) {
+    ++list_k_;
+    if (list_k_ == list_job_.count) list_req_valid_ = false;
+  }
+  // queued_pop: a job leaves the FIFO when req_valid_o was low this cycle.
+  if (queued && !lr.valid) {
+    list_job_ = jobs_.front();
+    jobs_.pop();
+    list_k_ = 0;
+    list_req_valid_ = true;
+  }
+  // A leaf's job enters the FIFO at this edge (seen from the next cycle).
+  if (has_new_job) jobs_.push(new_job);
+  if (n_moves_ > 0) {
+    const bool was_busy = Busy();
+    for (size_t k = 0; k < n_moves_; ++k) {
+      const auto [t, to_state] = moves_[k];
+      const State from = th_[t].state;
+      result_.thread_states[from] += cycle + 1 - since_[t];
+      since_[t] = cycle + 1;
+      in_set_[from].Reset(t);
+      in_set_[to_state].Set(t);
+      --in_state_[from];
+      ++in_state_[to_state];
+      th_[t].state = to_state;
+    }
+    if (Busy() != was_busy) {
+      if (was_busy) perf[kBitBusy] += cycle + 1 - busy_since_;
+      busy_since_ = cycle + 1;
+    }
+    n_moves_ = 0;
+  }
+  // The leaves over at this edge, to EXIT in the next cycle (a thread that
+  // issued a test this cycle has one outstanding: it is never found twice).
+  const auto leaf_over = [this](int t) {
+    return th_[t].state == kLeaf && th_[t].remaining == 0 && th_[t].outstanding == 0;
+  };
+  n_leaf_done_ = 0;
+  if (tri_fire && leaf_over(tri_thread)) leaf_done_[n_leaf_done_++] = tri_thread;
+  if (retired >= 0 && leaf_over(retired)) leaf_done_[n_leaf_done_++] = retired;
+}
+
+}  // namespace
+
+RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
+  FastReference ref;
+  const RayPaths paths = TraceReference(spec, &ref);
+  if (reference_totals) *reference_totals = ref.totals;
   // The memory's timing only: the model reads no data, so the memory holds
   // no image (a beat reads zeros, and costs no cache miss on the host). The
   // image must fit all the same, as for the RTL.
   MemoryModel memory(spec.memory);
-  memory.CheckFits(image.size());
+  memory.CheckFits(spec.image->size());
   // The simulation's own time, as the RTL harness counts it (without the
   // reference traversal, which both pay).
   const auto start = std::chrono::steady_clock::now();
-
-  const int threads = cfg[kThreads];
-  const int m = cfg.Format().m;
-  // Ray setup and clip (rt_ray_setup M + 8, rt_clip_unit 11) and the
-  // traversal step (8); a wider traversal (TravE, TravM) has its reciprocal
-  // divider (3 + TravM + 4) and one more stage in clip and traversal step
-  // (rounding the cell ends outwards into the core's format).
-  const bool mixed = cfg.TravFormat() != cfg.Format();
-  const int setup = std::max(m + 8, mixed ? cfg.TravFormat().m + 7 : 0);
-  const uint64_t lat_clip = static_cast<uint64_t>(setup) + 11 + (mixed ? 1 : 0);
-  const uint64_t lat_trav = 8 + (mixed ? 1 : 0);
-  const uint64_t lat_isect = static_cast<uint64_t>(m) + 34;
-  const int node_beats = 2, list_beats = 2, tri_beats = layout.TriangleLineBeats();
-  const int ways = cfg[kCacheWays];
-  Cache node(cfg[kNodeCacheLines], ways, node_beats, cfg[kCacheMshrs], cfg[kCacheTargets], true);
-  Cache list(cfg[kListCacheLines], ways, list_beats, cfg[kCacheMshrs], cfg[kCacheTargets], false);
-  Cache tri(cfg[kTriCacheLines], ways, tri_beats, cfg[kCacheMshrs], cfg[kCacheTargets], false);
-  Cache* caches[3] = {&node, &list, &tri};
-
-  std::vector<Thread> th(threads);
-  RrArb fetch_arb(threads), fetch2_arb(threads), exit_arb(threads), out_arb(threads);
-  int mem_last = 2;  // the memory arbiter's last grant (rt_rr_arb over the three caches)
-  // The threads in each state (the ray input and the arbiters pick from FREE,
-  // FETCH, EXIT and DONE), kept up to date by the moves below.
-  std::array<ThreadSet, 8> in_set;
-  in_set.fill(ThreadSet(threads));
-  for (int t = 0; t < threads; ++t) in_set[kFree].Set(t);
-  std::array<uint64_t, 8> in_state{};  // threads per state
-  in_state[kFree] = static_cast<uint64_t>(threads);
-  // The state changes of this cycle, applied at the clock edge (one per thread
-  // at most).
-  std::vector<std::pair<int, State>> moves(static_cast<size_t>(threads));
-  size_t n_moves = 0;
-  const auto Move = [&moves, &n_moves](int t, State to_state) { moves[n_moves++] = {t, to_state}; };
-  // The thread-state and busy counts accrue at the clock edges that change
-  // them: a thread's cycles in a state when it leaves it, the busy cycles
-  // when the core goes idle (and both at the end).
-  std::vector<uint64_t> since(static_cast<size_t>(threads), 0);  // in th[t].state since this cycle
-  uint64_t busy_since = 0;
-  auto& perf = out.result.perf;
-  const auto busy = [&in_state, threads] { return in_state[kFree] != static_cast<uint64_t>(threads); };
-  // The pipelines take at most one thread a cycle: setup/clip and traversal
-  // hold each thread at most once, intersection at most one test a cycle of
-  // its latency.
-  Ring<Stage> clip_pipe(threads, true), trav_pipe(threads, true), isect_pipe(lat_isect + 1, true);
-  Ring<Job> jobs(threads, true);  // rt_list_unit's FIFO (a thread has one job at most)
-  bool list_req_valid = false;
-  Job list_job{};
-  uint32_t list_k = 0;  // entries of list_job requested so far
-  size_t next_ray = 0, received = 0;
-  bool record_valid = false;  // rt_hit_out's register: a record leaves this cycle
-  uint64_t last_record = 0;
-  const uint32_t* lists = image.lists();
-  // The triangle cache's lines hold P records (img::ImageLayout): a line is
-  // named by id / P.
-  const uint32_t tri_per_line = static_cast<uint32_t>(layout.TrianglesPerLine());
-  const uint64_t tri_line_bytes = layout.TriangleLineBytes();
-
-  // The memory is asked for its beat only in the cycles it may have one ready
-  // when its token bucket comes out the same however the refill is split:
-  // with a bandwidth of whole 2^-20 bytes every sum is exact (and a sum too
-  // large to be exact is over the bucket's size anyway).
-  const double bw_units = std::ldexp(spec.memory.bytes_per_cycle, 20);
-  const bool lazy_memory = bw_units == std::floor(bw_units) && bw_units < std::ldexp(1.0, 40);
-  // LEAF -> EXIT once the tests issued and returned (registered counts) are
-  // both zero. Only a test issued or retired can make them so, at most one of
-  // each a cycle: the threads found at one clock edge move in the next cycle.
-  std::array<int, 2> leaf_done{};
-  int n_leaf_done = 0;
-  MemoryResponse resp;  // (its data is not used)
+  RayQueue queue(spec.rays->size(), 1, spec.rays->size());
+  FastCore<MemoryModel> core(spec, paths, ref, memory, queue, 0, LazyMemory(spec.memory));
   uint64_t cycle = 0;
   for (;; ++cycle) {
-    // Cycles in which nothing can change (every thread waits on a pipeline or
-    // the memory, no cache has anything to show or send) are skipped to the
-    // next event.
-    const bool quiet = !record_valid && in_state[kFetch] == 0 && in_state[kExit] == 0 && in_state[kDone] == 0 &&
-                       !(in_state[kFree] > 0 && next_ray < rays.size()) && n_leaf_done == 0 && !list_req_valid &&
-                       jobs.empty() && node.Quiet() && list.Quiet() && tri.Quiet();
-    if (quiet) {
-      uint64_t next_event = memory.next_ready_cycle();
-      for (const Ring<Stage>* pipe : {&clip_pipe, &trav_pipe, &isect_pipe}) {
-        if (!pipe->empty()) next_event = std::min(next_event, pipe->front().cycle);
-      }
+    // Cycles in which nothing can change are skipped to the next event.
+    if (core.Quiet()) {
+      const uint64_t next_event = std::min(memory.next_ready_cycle(), core.NextEvent());
       if (next_event != UINT64_MAX && next_event > cycle) {
-        // Skipped cycles make no progress: a memory stall while a cache waits
-        // on the memory (no thread is in EXIT here, so no stack stall).
-        if (busy() && (node.MemWait() || list.MemWait() || tri.MemWait())) perf[kBitStallMem] += next_event - cycle;
+        core.Skip(cycle, next_event);
         cycle = next_event;
       }
     }
-    // The memory's beat of this cycle, routed by {cache, register, beat}.
-    int resp_cache = -1, resp_id = -1;
-    if ((!lazy_memory || memory.next_ready_cycle() <= cycle) && memory.Respond(cycle, &resp)) {
-      resp_cache = resp.tag >> 8;
-      resp_id = resp.tag & 0xFF;
-    }
-    const int alloc = next_ray < rays.size() ? in_set[kFree].Lowest() : -1;
-    for (int k = 0; k < n_leaf_done; ++k) Move(leaf_done[k], kExit);
-    // A record leaves the core (hit_valid_o): the harness takes it.
-    if (record_valid) {
-      ++received;
-      ++perf[kBitRayOut];
-      last_record = cycle;
-      record_valid = false;
-      if (received == rays.size()) break;
-    }
-    if (cycle - last_record > spec.timeout) {
-      throw std::runtime_error("fast model: no hit record for " + std::to_string(spec.timeout) + " cycles");
-    }
-
-    // Ray in: the lowest free thread takes the harness's next ray.
-    if (alloc >= 0) {
-      th[alloc].next = steps.data() + path_begin[next_ray];
-      th[alloc].end = steps.data() + path_begin[next_ray + 1];
-      ++next_ray;
-      Move(alloc, kSetup);
-      clip_pipe.push({cycle + lat_clip, alloc});
-      ++perf[kBitRayIn];
-    }
-    // Setup and clip done: into FETCH, or DONE when the ray misses the box.
-    const bool clip_out = !clip_pipe.empty() && clip_pipe.front().cycle == cycle;
-    if (clip_out) {
-      const int t = clip_pipe.front().thread;
-      clip_pipe.pop();
-      Move(t, th[t].next == th[t].end ? kDone : kFetch);
-    }
-    const bool trav_out = !trav_pipe.empty() && trav_pipe.front().cycle == cycle;
-    if (trav_out) {
-      const int t = trav_pipe.front().thread;
-      trav_pipe.pop();
-      const bool overflow = th[t].next == th[t].end;  // the push met a full stack
-      Move(t, overflow ? kDone : kFetch);
-      if (overflow) ++perf[kBitOverflow];
-    }
-    // The test retired this cycle (isect_valid), if any.
-    int retired = -1;
-    if (!isect_pipe.empty() && isect_pipe.front().cycle == cycle) {
-      retired = isect_pipe.front().thread;
-      isect_pipe.pop();
-    }
-
-    // Node fetches: two arbiters, the second offered to the miss-only port.
-    ThreadSet& fetching = in_set[kFetch];
-    const int f1 = in_state[kFetch] > 0 ? fetch_arb.Pick(fetching) : -1;
-    Cache::Req n1, n2;
-    int f2 = -1;
-    if (f1 >= 0) {
-      fetching.Reset(f1);
-      f2 = fetch2_arb.Pick(fetching);
-      fetching.Set(f1);
-      n1.valid = true;
-      n1.key = th[f1].next->key;
-      n1.addr = n1.key << 5;
-      n1.tag = static_cast<uint64_t>(f1);
-    }
-    if (f2 >= 0) {
-      n2.valid = true;
-      n2.key = th[f2].next->key;
-      n2.addr = n2.key << 5;
-      n2.tag = static_cast<uint64_t>(f2);
-    }
-    // The node response (registered) fires: the units are always ready.
-    const bool node_fire = node.resp_valid();
-    const int node_tag = node_fire ? static_cast<int>(node.resp_tag()) : -1;
-    node.Eval(n1, n2, true);
-    fetch_arb.Ack(f1);
-    fetch2_arb.Ack(f2);
-    if (node.accept1()) Move(f1, kWaitNode);
-    if (node.accept2()) Move(f2, kWaitNode);
-    Job new_job{};  // a leaf's job for the list unit's FIFO
-    bool has_new_job = false;
-    bool trav_in = false;
-    if (node_fire) {
-      Thread& t = th[node_tag];
-      const Step& n = *t.next;
-      ++t.next;
-      if (n.count == kInner) {
-        trav_in = true;
-        Move(node_tag, kTrav);
-        trav_pipe.push({cycle + lat_trav, node_tag});
-        ++perf[kBitTravBusy];
-      } else {
-        ++perf[kBitTravLeaf];
-        if (n.count > 0) {
-          Move(node_tag, kLeaf);
-          t.remaining = n.count;
-          new_job = {node_tag, n.first, n.count};
-          has_new_job = true;
-        } else {
-          Move(node_tag, kExit);
-        }
-      }
-    }
-
-    // The list unit's request (registered), the list cache, the triangle
-    // cache behind it (its request is the list cache's response).
-    Cache::Req lr;
-    if (list_req_valid) {
-      const uint64_t addr = h.list_offset + uint64_t{list_job.first + list_k} * img::kListEntryBytes;
-      lr = {true, addr >> 5, (addr >> 5) << 5, uint64_t(list_job.thread) << 32 | (list_job.first + list_k)};
-    }
-    Cache::Req trq;
-    if (list.resp_valid()) {
-      const uint64_t tag = list.resp_tag();
-      const uint32_t id = lists[tag & 0xFFFFFFFFu];
-      const uint32_t line = id / tri_per_line;
-      trq = {true, line, h.tri_offset + uint64_t{line} * tri_line_bytes, (tag >> 32) << 32 | id};
-    }
-    const bool tri_fire = tri.resp_valid();
-    const int tri_thread = tri_fire ? static_cast<int>(tri.resp_tag() >> 32) : -1;
-    tri.Eval(trq, Cache::Req{}, true);
-    list.Eval(lr, Cache::Req{}, tri.accept1());
-    const bool list_fire = list_req_valid && list.accept1();
-    // rt_perf_events' list_busy: an entry requested or one answered (its
-    // triangle taken by the triangle cache).
-    const bool entry_fire = trq.valid && tri.accept1();
-    if (list_fire || entry_fire) ++perf[kBitListBusy];
-    if (tri_fire) {
-      isect_pipe.push({cycle + lat_isect, tri_thread});
-      ++perf[kBitIsectBusy];
-    }
-
-    // The memory arbiter: one beat a cycle, round robin over the caches (the
-    // first requester after the last grant).
-    const unsigned mreq = node.mem_valid() | list.mem_valid() << 1 | tri.mem_valid() << 2;
-    const int g = kMemPick[mem_last][mreq];
-    if (g >= 0) {
-      mem_last = g;
-      memory.Request(caches[g]->mem_addr(), static_cast<uint16_t>(g << 8 | caches[g]->mem_id()), cycle);
-    }
-
-    // Leaf exits and records out.
-    const int ex = in_state[kExit] > 0 ? exit_arb.Pick(in_set[kExit]) : -1;
-    exit_arb.Ack(ex);
-    if (ex >= 0) Move(ex, th[ex].next == th[ex].end ? kDone : kFetch);
-    const int o = in_state[kDone] > 0 ? out_arb.Pick(in_set[kDone]) : -1;
-    out_arb.Ack(o);
-    if (o >= 0) {
-      Move(o, kFree);
-      record_valid = true;
-    }
-
-    // rt_perf_events' stalls from this cycle's registered state and moves: a
-    // memory stall when a thread is busy, nothing progresses and a cache
-    // waits on the memory; a stack stall when a thread in EXIT is not taken.
-    // (The units and the harness are always ready: no backpressure.)
-    const bool any_progress = trav_in || list_fire || entry_fire || tri_fire || ex >= 0 || o >= 0 || alloc >= 0 ||
-                              clip_out || trav_out || retired >= 0;
-    if (busy() && !any_progress && (node.MemWait() || list.MemWait() || tri.MemWait())) ++perf[kBitStallMem];
-    if (in_state[kExit] > (ex >= 0 ? 1u : 0u)) ++perf[kBitStallStack];
-
-    // LEAF: the counters of tests issued and returned.
-    if (tri_fire) {
-      --th[tri_thread].remaining;
-      ++th[tri_thread].outstanding;
-    }
-    if (retired >= 0) --th[retired].outstanding;
-
-    // The clock edge.
-    node.Commit(g == 0, resp_cache == 0 ? resp_id : -1);
-    list.Commit(g == 1, resp_cache == 1 ? resp_id : -1);
-    tri.Commit(g == 2, resp_cache == 2 ? resp_id : -1);
-    // rt_list_unit: the request register and the job FIFO.
-    const bool queued = !jobs.empty();
-    if (list_fire) {
-      ++list_k;
-      if (list_k == list_job.count) list_req_valid = false;
-    }
-    // queued_pop: a job leaves the FIFO when req_valid_o was low this cycle.
-    if (queued && !lr.valid) {
-      list_job = jobs.front();
-      jobs.pop();
-      list_k = 0;
-      list_req_valid = true;
-    }
-    // A leaf's job enters the FIFO at this edge (seen from the next cycle).
-    if (has_new_job) jobs.push(new_job);
-    if (n_moves > 0) {
-      const bool was_busy = busy();
-      for (size_t k = 0; k < n_moves; ++k) {
-        const auto [t, to_state] = moves[k];
-        const State from = th[t].state;
-        out.result.thread_states[from] += cycle + 1 - since[t];
-        since[t] = cycle + 1;
-        in_set[from].Reset(t);
-        in_set[to_state].Set(t);
-        --in_state[from];
-        ++in_state[to_state];
-        th[t].state = to_state;
-      }
-      if (busy() != was_busy) {
-        if (was_busy) perf[kBitBusy] += cycle + 1 - busy_since;
-        busy_since = cycle + 1;
-      }
-      n_moves = 0;
-    }
-    // The leaves over at this edge, to EXIT in the next cycle (a thread that
-    // issued a test this cycle has one outstanding: it is never found twice).
-    const auto leaf_over = [&th](int t) {
-      return th[t].state == kLeaf && th[t].remaining == 0 && th[t].outstanding == 0;
-    };
-    n_leaf_done = 0;
-    if (tri_fire && leaf_over(tri_thread)) leaf_done[n_leaf_done++] = tri_thread;
-    if (retired >= 0 && leaf_over(retired)) leaf_done[n_leaf_done++] = retired;
+    if (core.Done()) break;
+    core.Cycle(cycle);
   }
-  // The counts of the last cycle's states (the cycle of the last record).
-  for (int t = 0; t < threads; ++t) out.result.thread_states[th[t].state] += cycle + 1 - since[t];
-  if (busy()) perf[kBitBusy] += cycle + 1 - busy_since;
-  out.result.cycles = cycle + 1;
-  const Cache::Events* ev[3] = {&node.events(), &list.events(), &tri.events()};
-  const char* names[3] = {"node", "list", "tri"};
-  for (int k = 0; k < 3; ++k) {
-    const std::string n = names[k];
-    perf[PerfBit(n + "_hit")] += ev[k]->hit;
-    perf[PerfBit(n + "_miss")] += ev[k]->miss;
-    perf[PerfBit(n + "_merge")] += ev[k]->merge;
-    perf[PerfBit(n + "_wait")] += ev[k]->wait;
-    perf[PerfBit(n + "_wait_inflight")] += ev[k]->wait_inflight;
-    perf[PerfBit(n + "_wait_mshr")] += ev[k]->wait_mshr;
-  }
+  RunOutcome out;
+  core.Finish(cycle, &out);
+  out.result.hits = std::move(ref.hits);
+  out.result.overflow = std::move(ref.overflow);
   out.mem_bytes_read = memory.bytes_read();
   out.mem_requests = memory.requests();
   out.mem_max_outstanding = memory.max_outstanding();
   out.result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+SystemOutcome RunFastCores(const FastSpec& spec, int cores, const L2Config& l2_config, size_t chunk,
+                           FastReference* reference) {
+  FastReference& ref = *reference;
+  ref = FastReference{};
+  const RayPaths paths = TraceReference(spec, &ref);
+  MemoryModel memory(spec.memory);
+  memory.CheckFits(spec.image->size());
+  // The L2 reads no data either: its beats are zeros.
+  const std::vector<uint8_t> no_data;
+  SharedL2 l2(l2_config, memory, no_data, cores);
+  const bool lazy = LazyMemory(spec.memory);
+  const auto start = std::chrono::steady_clock::now();
+  RayQueue queue(spec.rays->size(), cores, chunk);
+  std::vector<L2Port> ports;
+  ports.reserve(static_cast<size_t>(cores));
+  std::vector<std::unique_ptr<FastCore<L2Port>>> core;
+  for (int k = 0; k < cores; ++k) {
+    ports.emplace_back(l2, k);
+    // The L2's answers to a core wait in its queue with their cycle: asking
+    // from next_ready_cycle() on is exact.
+    core.push_back(std::make_unique<FastCore<L2Port>>(spec, paths, ref, ports[k], queue, k, true));
+  }
+  std::vector<uint64_t> done_at(static_cast<size_t>(cores), UINT64_MAX);
+  int running = cores;
+  SystemOutcome out;
+  for (uint64_t cycle = 0;; ++cycle) {
+    // Cycles in which no running core can change and nothing reaches the L2
+    // are skipped to the next event.
+    bool quiet = true;
+    uint64_t next_event = memory.next_ready_cycle();
+    for (int k = 0; k < cores && quiet; ++k) {
+      if (done_at[k] != UINT64_MAX) continue;
+      quiet = core[k]->Quiet();
+      next_event = std::min({next_event, core[k]->NextEvent(), ports[k].next_ready_cycle()});
+    }
+    if (quiet && next_event != UINT64_MAX && next_event > cycle) {
+      for (int k = 0; k < cores; ++k) {
+        if (done_at[k] == UINT64_MAX) core[k]->Skip(cycle, next_event);
+      }
+      cycle = next_event;
+    }
+    // The L2 takes the memory's beat of this cycle before any core asks it
+    // (as the first core's Respond does in the SystemC system).
+    if (!lazy || memory.next_ready_cycle() <= cycle) l2.Advance(cycle);
+    // The cores in the SystemC kernel's order of their clock methods (the
+    // order they were made in): a core that is done stops at its clock edge.
+    for (int k = 0; k < cores; ++k) {
+      if (done_at[k] != UINT64_MAX) continue;
+      if (core[k]->Done()) {
+        done_at[k] = cycle;
+        --running;
+        continue;
+      }
+      core[k]->Cycle(cycle);
+    }
+    if (running == 0) {
+      out.cycles = cycle;
+      break;
+    }
+  }
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (int k = 0; k < cores; ++k) {
+    RunOutcome c;
+    core[k]->Finish(done_at[k], &c);
+    c.result.wall_seconds = out.wall_seconds;
+    c.mem_bytes_read = memory.bytes_read();
+    c.mem_requests = memory.requests();
+    c.mem_max_outstanding = memory.max_outstanding();
+    out.cores.push_back(std::move(c));
+  }
+  out.mem_bytes_read = memory.bytes_read();
+  out.mem_requests = memory.requests();
+  out.mem_max_outstanding = memory.max_outstanding();
+  out.l2 = l2.stats();
+  out.l2_config = l2_config;
   return out;
 }
 

@@ -21,6 +21,7 @@
 
 #include "common/ray.h"
 #include "sim/core_params.h"
+#include "sim/l2_cache.h"
 #include "sim/memory_model.h"
 #include "sim/run_result.h"
 #include "trace/memory_image.h"
@@ -36,7 +37,28 @@ struct FastSpec {
   uint64_t timeout = 1000000;  // cycles without a hit record
 };
 
-// The reference's hits are in result.hits; throws SimFailure on a timeout.
+// One core straight on the memory (the fast model of RunVerilator). The
+// reference's hits are in result.hits; throws std::runtime_error on a
+// timeout.
 RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals);
+
+// What the reference traversal gave every ray of a run of several cores:
+// the hits (the records the cores return), and each ray's counters (a
+// core's bound is the sum over the rays it took).
+struct FastReference {
+  std::vector<Hit> hits;
+  std::vector<uint8_t> overflow;  // by ray: its push met a full stack
+  uint64_t overflows = 0;
+  std::vector<RayCounters> per_ray;
+  RayCounters totals;
+};
+
+// N cores sharing an L2 in front of the memory, rays from one shared queue
+// `chunk` at a time: the fast model of RunSystemCCores (sim/sc_top.h), core
+// by core in the order the SystemC kernel runs them, so each core takes the
+// same rays in the same cycles as there. Each core's result has its rays'
+// ids, hit and overflow counts; the hits themselves are in `reference`.
+SystemOutcome RunFastCores(const FastSpec& spec, int cores, const L2Config& l2, size_t chunk,
+                           FastReference* reference);
 
 }  // namespace kdrt::sim

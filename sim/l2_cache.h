@@ -49,6 +49,18 @@ class SharedL2 {
   const L2Stats& stats() const { return stats_; }
   const L2Config& config() const { return config_; }
 
+  // What port(core) does, without the virtual call (the fast model's cores
+  // call these directly).
+  void Request(int core, uint64_t addr, uint16_t tag, uint64_t cycle);
+  bool Respond(int core, uint64_t cycle, MemoryResponse* out);
+  // Takes the memory's beat of `cycle` (once per cycle; later calls in the
+  // same cycle do nothing) and installs lines. Respond() calls it; a caller
+  // that skips cycles in which nothing can arrive calls it itself.
+  void Advance(uint64_t cycle);
+  // The first cycle in which Respond(core) can return a beat without a new
+  // memory beat arriving first (UINT64_MAX: none queued for the core).
+  uint64_t next_ready_cycle(int core) const { return out_[core].empty() ? UINT64_MAX : out_[core].top().ready; }
+
  private:
   class Port;
   struct Response {
@@ -68,10 +80,6 @@ class SharedL2 {
     std::vector<Waiter> waiters;
   };
 
-  void Request(int core, uint64_t addr, uint16_t tag, uint64_t cycle);
-  bool Respond(int core, uint64_t cycle, MemoryResponse* out);
-  // Takes the memory's beat of `cycle` (once per cycle) and installs lines.
-  void Advance(uint64_t cycle);
   bool Lookup(uint64_t line);  // and makes it most recently used
   void Install(uint64_t line);
   void Answer(int core, uint64_t addr, uint16_t tag, uint64_t ready);

@@ -206,24 +206,36 @@ ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, co
   spec.memory.latency = run.mem_latency;
   spec.memory.bytes_per_cycle = run.mem_bw;
   spec.timeout = run.timeout;
-  RayCounters totals;
-  RunOutcome outcome = RunFastModel(spec, &totals);
   ReportInputs ri;
   ri.loop = "fast";
   ri.config = config;
   ri.requirements = DeriveRequirements(view);
   ri.memory = spec.memory;
-  ri.reference_totals = totals;
-  ri.run = &outcome;
   ri.rays = rays.size();
   ri.query = query;
   ModelRun out;
-  out.report = ReportJson(ri);
+  if (run.cores > 0) {
+    // Several cores behind the shared L2, as the SystemC system model runs
+    // them (RunSystemCCores).
+    L2Config l2;
+    l2.size_bytes = run.l2_kb * 1024u;
+    l2.ways = run.l2_ways;
+    l2.latency = run.l2_latency;
+    FastReference ref;
+    const SystemOutcome sys = RunFastCores(spec, run.cores, l2, run.ray_chunk, &ref);
+    ri.reference_totals = ref.totals;
+    out.report = SystemReportJson(ri, sys, ref.per_ray);
+    out.hits = std::move(ref.hits);
+  } else {
+    RunOutcome outcome = RunFastModel(spec, &ri.reference_totals);
+    ri.run = &outcome;
+    out.report = ReportJson(ri);
+    out.hits = std::move(outcome.result.hits);
+  }
   out.report["cycle_model"] = "fast";
   out.report["notes"] = {"fast cycle model (sim/fast_model.h): cycles and every performance event as the RTL "
                          "counts them (cycle-exact where tested: tests/sim/sim_cli_test.cpp); a stack overflow "
                          "ends the ray as in the RTL"};
-  out.hits = std::move(outcome.result.hits);
   return out;
 }
 

@@ -22,8 +22,8 @@ void AddRunOptions(CLI::App& cmd, RunOptions& o) {
   cmd.add_flag("--progress", o.progress, "Progress line on stderr (default: when stderr is a terminal)");
   cmd.add_flag("--systemc", o.systemc, "Run the core inside the SystemC top");
   cmd.add_option("--cores", o.cores,
-                 "Run N cores (SystemC system model) sharing an L2 cache and the memory; rays from one shared "
-                 "queue (default: one core, no L2)")
+                 "Run N cores sharing an L2 cache and the memory (the RTL: SystemC system model; --model fast: "
+                 "the fast model of it); rays from one shared queue (default: one core, no L2)")
       ->check(CLI::Range(1, 64));
   cmd.add_option("--l2-kb", o.l2_kb, "With --cores: L2 size in KiB (64-byte lines)")->capture_default_str();
   cmd.add_option("--l2-ways", o.l2_ways, "With --cores: L2 associativity (LRU)")->capture_default_str();

@@ -24,7 +24,7 @@ struct RunOptions {
   int64_t trace_ray = -1;      // dump only while this ray is in flight
   bool progress = false;
   bool systemc = false;
-  // Several cores (the SystemC system model): 0 = one core straight on the
+  // Several cores (the SystemC system model, or the fast model's): 0 = one core straight on the
   // memory (no L2); N >= 1 = N cores sharing an L2 in front of the memory.
   int cores = 0;
   uint32_t l2_kb = 256;

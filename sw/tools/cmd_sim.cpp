@@ -62,10 +62,9 @@ int RunSim(SimArgs args) {
   if (args.model != "rtl" && args.model != "fast" && args.model != "both") {
     throw InputError("--model " + args.model + ": expected rtl, fast or both");
   }
-  if (args.model == "fast" && (!args.run.trace.empty() || args.run.cores > 0 || args.run.systemc)) {
-    throw InputError("--model fast: no waveform, --cores or --systemc (the fast model is one core in plain C++)");
+  if (args.model == "fast" && (!args.run.trace.empty() || args.run.systemc)) {
+    throw InputError("--model fast: no waveform or --systemc (the fast model is plain C++, not the RTL)");
   }
-  if (args.model == "both" && args.run.cores > 0) throw InputError("--model both: one core only (no --cores)");
   const fp::Format format = fp::ParseFormat(args.format);
   if (format.IsFp64()) {
     throw InputError("--format fp64: no RTL model computes in fp64 (it is the software reference: kdrt render "

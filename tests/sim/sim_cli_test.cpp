@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -300,6 +301,7 @@ TEST_P(FastModelMatchesRtl, SameCyclesAndEvents) {
   EXPECT_EQ(f["utilisation"], j["utilisation"]);
   EXPECT_EQ(f["thread_states"], j["thread_states"]);
   EXPECT_EQ(f["memory"]["bytes_read"], j["memory"]["bytes_read"]);
+  EXPECT_EQ(f["max_rays_in_flight"], j["max_rays_in_flight"]);
   const RunResult fast = RunKdrt("sim " + common + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
   ASSERT_EQ(fast.exit_code, 0) << fast.output;
   EXPECT_NE(fast.output.find("cycle model    fast"), std::string::npos) << fast.output;
@@ -313,6 +315,58 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"gen:rings:800", "bf16"}, SceneCase{"gen:tetra:1000", "fp16"},
                       SceneCase{"gen:tree:2000", "fp32"}, SceneCase{"gen:gears:1500", "bf16"}),
     CaseName);
+
+// Several cores in the fast model (RunFastCores): the SystemC system's
+// cycles core by core, the rays each core took, its counters, and the shared
+// L2's and the memory's figures, with a ray chunk that does not divide the
+// rays, a slow memory and an L2 small enough to evict.
+struct CoresCase {
+  const char* scene;
+  const char* format;
+  const char* options;
+};
+
+void PrintTo(const CoresCase& c, std::ostream* os) { *os << c.scene << " " << c.format << " " << c.options; }
+
+class FastModelMatchesRtlCores : public SimCli, public ::testing::WithParamInterface<CoresCase> {};
+
+TEST_P(FastModelMatchesRtlCores, SameCyclesPerCore) {
+  const CoresCase c = GetParam();
+  const std::string common = std::string("sim ") + c.scene + " --res 24x24 --format " + c.format + " " + c.options + " -q";
+  const RunResult r = RunKdrt(common + " --model both -o " + Path("x.png") + " --json " + Path("x.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = ReadJson(Path("x.json"));
+  const nlohmann::json& f = j["fast"]["report"];
+  ASSERT_TRUE(j.contains("per_core"));
+  EXPECT_EQ(f["cycle_model"], "fast");
+  EXPECT_EQ(f["cycles"], j["cycles"]);
+  EXPECT_EQ(j["fast"]["error"].get<double>(), 0.0);
+  EXPECT_EQ(f["per_core"], j["per_core"]);
+  EXPECT_EQ(f["perf_counts"], j["perf_counts"]);
+  EXPECT_EQ(f["thread_states"], j["thread_states"]);
+  EXPECT_EQ(f["l2"], j["l2"]);
+  EXPECT_EQ(f["memory"]["bytes_read"], j["memory"]["bytes_read"]);
+  EXPECT_EQ(f["max_rays_in_flight"], j["max_rays_in_flight"]);
+  // Every core worked, and the fast model alone gives the same image.
+  for (const auto& core : f["per_core"]) EXPECT_GT(core["rays"].get<uint64_t>(), 0u);
+  const RunResult fast = RunKdrt(common + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
+  ASSERT_EQ(fast.exit_code, 0) << fast.output;
+  EXPECT_EQ(ReadBytes(Path("f.png")), ReadBytes(Path("x.png")));
+  EXPECT_EQ(ReadJson(Path("f.json"))["per_core"], j["per_core"]);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    GeneratedScenes, FastModelMatchesRtlCores,
+    ::testing::Values(CoresCase{"gen:balls:800", "fp32", "--cores 4 --ray-chunk 16"},
+                      CoresCase{"gen:gears:1500", "bf16", "--cores 3 --ray-chunk 7 --mem-latency 90 --mem-bw 3"},
+                      CoresCase{"gen:tree:2000", "fp16", "--cores 2 --l2-kb 4 --l2-ways 2 --l2-latency 3"}),
+    [](const ::testing::TestParamInfo<CoresCase>& info) {
+      std::string n = std::string(info.param.scene).substr(4) + "_" + info.param.format;
+      for (char& ch : n) {
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      }
+      return n;
+    });
 
 // Set-associative caches (--cache-ways; pseudo-LRU, rtl/rt_cache.sv): the
 // fast model follows the RTL's replacement cycle by cycle, and where the
@@ -375,9 +429,8 @@ TEST_P(InPlaneRays, SimMatchesTheReference) {
 INSTANTIATE_TEST_SUITE_P(Presets, InPlaneRays, ::testing::Values("fp32", "fp24", "bf16", "fp16"));
 
 TEST_F(SimCli, FastModelOptionErrors) {
-  for (const std::string& bad : std::vector<std::string>{"--model slow", "--model fast --cores 2",
-                                                          "--model fast --trace " + Path("w.fst"),
-                                "--model both --cores 2"}) {
+  for (const std::string& bad : std::vector<std::string>{"--model slow", "--model fast --trace " + Path("w.fst"),
+                                                          "--model fast --systemc"}) {
     const RunResult r = RunKdrt("sim gen:room:300 --res 8x8 -o " + Path("x.png") + " " + bad);
     EXPECT_EQ(r.exit_code, 1) << bad << ": " << r.output;
     EXPECT_NE(r.output.find("--model"), std::string::npos) << r.output;
