@@ -19,14 +19,15 @@ class Ring {
     size_t cap = 1;
     while (cap < capacity) cap <<= 1;
     buf_.resize(cap);
+    mask_ = cap - 1;
   }
   bool empty() const { return head_ == tail_; }
   size_t size() const { return tail_ - head_; }
-  const T& front() const { return buf_[head_ & (buf_.size() - 1)]; }
+  const T& front() const { return buf_[head_ & mask_]; }
   void pop() { ++head_; }
   void push(const T& v) {
-    if (size() == buf_.size()) Grow();
-    buf_[tail_++ & (buf_.size() - 1)] = v;
+    if (size() > mask_) Grow();
+    buf_[tail_++ & mask_] = v;
   }
 
  private:
@@ -34,13 +35,15 @@ class Ring {
   void Grow() {
     if (bounded_) throw std::logic_error("ring overflow: more entries than its bound");
     std::vector<T> bigger(buf_.size() * 2);
-    for (size_t i = head_; i < tail_; ++i) bigger[i - head_] = buf_[i & (buf_.size() - 1)];
+    for (size_t i = head_; i < tail_; ++i) bigger[i - head_] = buf_[i & mask_];
     tail_ -= head_;
     head_ = 0;
     buf_.swap(bigger);
+    mask_ = buf_.size() - 1;
   }
 
   std::vector<T> buf_;
+  size_t mask_ = 0;  // buf_.size() - 1 (a power of two less one)
   bool bounded_;
   size_t head_ = 0, tail_ = 0;  // running counts: the entries are [head_, tail_)
 };
