@@ -5,6 +5,7 @@
 #include <chrono>
 #include <memory>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -861,6 +862,39 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   if (retired >= 0 && leaf_over(retired)) leaf_done_[n_leaf_done_++] = retired;
 }
 
+// The progress line of a long run (kdrt sim --progress, or stderr a
+// terminal): rays returned, cycles and simulated cycles per second, every
+// half second, looked at every 2^16 loop iterations.
+class Progress {
+ public:
+  Progress(bool on, const RayQueue& queue) : on_(on), queue_(queue), start_(std::chrono::steady_clock::now()) {
+    last_ = start_;
+  }
+  void Step(uint64_t cycle) {
+    if (!on_ || (++iterations_ & 0xFFFF) != 0) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::milliseconds(500)) return;
+    last_ = now;
+    Print(cycle, false);
+  }
+  void Done(uint64_t cycles) {
+    if (on_ && std::chrono::steady_clock::now() - start_ >= std::chrono::milliseconds(500)) Print(cycles, true);
+  }
+
+ private:
+  void Print(uint64_t cycle, bool final_line) {
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::fprintf(stderr, "\rsim (fast): %zu/%zu rays, %llu cycles, %.1f Mcycles/s%s", queue_.returned(),
+                 queue_.count(), static_cast<unsigned long long>(cycle), secs > 0 ? cycle / secs * 1e-6 : 0.0,
+                 final_line ? "\n" : "");
+    std::fflush(stderr);
+  }
+  bool on_;
+  const RayQueue& queue_;
+  uint64_t iterations_ = 0;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
 }  // namespace
 
 RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
@@ -877,8 +911,10 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   const auto start = std::chrono::steady_clock::now();
   RayQueue queue(spec.rays->size(), 1, spec.rays->size());
   FastCore<MemoryModel> core(spec, paths, ref, memory, queue, 0, LazyMemory(spec.memory));
+  Progress progress(spec.progress, queue);
   uint64_t cycle = 0;
   for (;; ++cycle) {
+    progress.Step(cycle);
     // Cycles in which nothing can change are skipped to the next event.
     if (core.Quiet()) {
       const uint64_t next_event = std::min(memory.next_ready_cycle(), core.NextEvent());
@@ -890,6 +926,7 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
     if (core.Done()) break;
     core.Cycle(cycle);
   }
+  progress.Done(cycle);
   RunOutcome out;
   core.Finish(cycle, &out);
   out.result.hits = std::move(ref.hits);
@@ -926,7 +963,9 @@ SystemOutcome RunFastCores(const FastSpec& spec, int cores, const L2Config& l2_c
   std::vector<uint64_t> done_at(static_cast<size_t>(cores), UINT64_MAX);
   int running = cores;
   SystemOutcome out;
+  Progress progress(spec.progress, queue);
   for (uint64_t cycle = 0;; ++cycle) {
+    progress.Step(cycle);
     // Cycles in which no running core can change and nothing reaches the L2
     // are skipped to the next event.
     bool quiet = true;
@@ -961,6 +1000,7 @@ SystemOutcome RunFastCores(const FastSpec& spec, int cores, const L2Config& l2_c
       break;
     }
   }
+  progress.Done(out.cycles);
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (int k = 0; k < cores; ++k) {
     RunOutcome c;

@@ -35,6 +35,7 @@ struct FastSpec {
   CoreConfig config;
   MemoryConfig memory;
   uint64_t timeout = 1000000;  // cycles without a hit record
+  bool progress = false;       // a progress line on stderr (rays returned, cycles, Mcycles/s)
 };
 
 // One core straight on the memory (the fast model of RunVerilator). The

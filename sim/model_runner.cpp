@@ -206,6 +206,7 @@ ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, co
   spec.memory.latency = run.mem_latency;
   spec.memory.bytes_per_cycle = run.mem_bw;
   spec.timeout = run.timeout;
+  spec.progress = run.progress;
   ReportInputs ri;
   ri.loop = "fast";
   ri.config = config;
