@@ -391,9 +391,10 @@ struct RayPaths {
   std::vector<size_t> begin;  // ray r's steps are [begin[r], begin[r + 1])
 };
 
-// The reference traversal of every ray of `spec`: its hit and counters, and
-// its path (the nodes it fetches, each leaf's list entries).
-RayPaths TraceReference(const FastSpec& spec, FastReference* ref) {
+// The reference traversal of every ray of `spec`: its hit, its counters
+// (each ray's kept only with `keep_per_ray`: several cores' bounds need them),
+// and its path (the nodes it fetches, each leaf's list entries).
+RayPaths TraceReference(const FastSpec& spec, FastReference* ref, bool keep_per_ray) {
   const ImageView& image = *spec.image;
   const std::vector<Ray>& rays = *spec.rays;
   const CoreConfig& cfg = spec.config;
@@ -401,7 +402,7 @@ RayPaths TraceReference(const FastSpec& spec, FastReference* ref) {
   const img::Header& h = image.header();
   ref->hits.resize(rays.size());
   ref->overflow.assign(rays.size(), 0);
-  ref->per_ray.assign(rays.size(), RayCounters{});
+  if (keep_per_ray) ref->per_ray.assign(rays.size(), RayCounters{});
   std::vector<std::vector<uint32_t>> paths(rays.size());
   TraceOptions to;
   to.format = cfg.Format();
@@ -412,8 +413,9 @@ RayPaths TraceReference(const FastSpec& spec, FastReference* ref) {
   // from TRAV to DONE, and its record is the hit it had (rt_thread_fsm).
   to.stack_depth = cfg[kStackDepth];
   for (size_t i = 0; i < rays.size(); ++i) {
-    RayCounters& c = ref->per_ray[i];
+    RayCounters c;
     ref->hits[i] = TraceOne(image, rays[i], to, &c, &paths[i]);
+    if (keep_per_ray) ref->per_ray[i] = c;
     ref->overflow[i] = c.overflows > 0;
     ref->overflows += c.overflows > 0;
     ref->totals += c;
@@ -899,7 +901,7 @@ class Progress {
 
 RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   FastReference ref;
-  const RayPaths paths = TraceReference(spec, &ref);
+  const RayPaths paths = TraceReference(spec, &ref, false);
   if (reference_totals) *reference_totals = ref.totals;
   // The memory's timing only: the model reads no data, so the memory holds
   // no image (a beat reads zeros, and costs no cache miss on the host). The
@@ -942,7 +944,7 @@ SystemOutcome RunFastCores(const FastSpec& spec, int cores, const L2Config& l2_c
                            FastReference* reference) {
   FastReference& ref = *reference;
   ref = FastReference{};
-  const RayPaths paths = TraceReference(spec, &ref);
+  const RayPaths paths = TraceReference(spec, &ref, true);
   MemoryModel memory(spec.memory);
   memory.CheckFits(spec.image->size());
   // The L2 reads no data either: its beats are zeros.
