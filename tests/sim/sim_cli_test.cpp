@@ -280,6 +280,23 @@ TEST_F(SimCli, SeveralCoresShareTheL2) {
 // The fast cycle model (sim/fast_model.h) follows the core register by
 // register: the same cycles as the RTL on every generator and preset, the
 // reference's hits, and --model fast alone needs no RTL model.
+// The fast model's report beside the RTL's (kdrt sim --model both): the
+// same cycles and every performance counter, the stall breakdown, the
+// thread states, the memory's bytes and the rays in flight.
+void ExpectFastEqualsRtl(const nlohmann::json& j) {
+  const nlohmann::json& f = j["fast"]["report"];
+  EXPECT_EQ(j["cycle_model"], "rtl");
+  EXPECT_EQ(f["cycle_model"], "fast");
+  EXPECT_EQ(f["cycles"], j["cycles"]);
+  EXPECT_EQ(j["fast"]["error"].get<double>(), 0.0);
+  EXPECT_EQ(f["perf_counts"], j["perf_counts"]);
+  EXPECT_EQ(f["stalls"], j["stalls"]);
+  EXPECT_EQ(f["utilisation"], j["utilisation"]);
+  EXPECT_EQ(f["thread_states"], j["thread_states"]);
+  EXPECT_EQ(f["memory"]["bytes_read"], j["memory"]["bytes_read"]);
+  EXPECT_EQ(f["max_rays_in_flight"], j["max_rays_in_flight"]);
+}
+
 class FastModelMatchesRtl : public SimCli, public ::testing::WithParamInterface<SceneCase> {};
 
 TEST_P(FastModelMatchesRtl, SameCyclesAndEvents) {
@@ -290,18 +307,7 @@ TEST_P(FastModelMatchesRtl, SameCyclesAndEvents) {
   const RunResult r = RunKdrt("sim " + common + " --model both -q -o " + Path("x.png") + " --json " + Path("x.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = ReadJson(Path("x.json"));
-  const nlohmann::json& f = j["fast"]["report"];
-  EXPECT_EQ(j["cycle_model"], "rtl");
-  EXPECT_EQ(f["cycle_model"], "fast");
-  EXPECT_EQ(f["cycles"], j["cycles"]);
-  EXPECT_EQ(j["fast"]["error"].get<double>(), 0.0);
-  // Every performance counter, the stall breakdown included.
-  EXPECT_EQ(f["perf_counts"], j["perf_counts"]);
-  EXPECT_EQ(f["stalls"], j["stalls"]);
-  EXPECT_EQ(f["utilisation"], j["utilisation"]);
-  EXPECT_EQ(f["thread_states"], j["thread_states"]);
-  EXPECT_EQ(f["memory"]["bytes_read"], j["memory"]["bytes_read"]);
-  EXPECT_EQ(f["max_rays_in_flight"], j["max_rays_in_flight"]);
+  ExpectFastEqualsRtl(j);
   const RunResult fast = RunKdrt("sim " + common + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
   ASSERT_EQ(fast.exit_code, 0) << fast.output;
   EXPECT_NE(fast.output.find("cycle model    fast"), std::string::npos) << fast.output;
@@ -338,15 +344,9 @@ TEST_P(FastModelMatchesRtlCores, SameCyclesPerCore) {
   const nlohmann::json j = ReadJson(Path("x.json"));
   const nlohmann::json& f = j["fast"]["report"];
   ASSERT_TRUE(j.contains("per_core"));
-  EXPECT_EQ(f["cycle_model"], "fast");
-  EXPECT_EQ(f["cycles"], j["cycles"]);
-  EXPECT_EQ(j["fast"]["error"].get<double>(), 0.0);
+  ExpectFastEqualsRtl(j);
   EXPECT_EQ(f["per_core"], j["per_core"]);
-  EXPECT_EQ(f["perf_counts"], j["perf_counts"]);
-  EXPECT_EQ(f["thread_states"], j["thread_states"]);
   EXPECT_EQ(f["l2"], j["l2"]);
-  EXPECT_EQ(f["memory"]["bytes_read"], j["memory"]["bytes_read"]);
-  EXPECT_EQ(f["max_rays_in_flight"], j["max_rays_in_flight"]);
   // Every core worked, and the fast model alone gives the same image.
   for (const auto& core : f["per_core"]) EXPECT_GT(core["rays"].get<uint64_t>(), 0u);
   const RunResult fast = RunKdrt(common + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
