@@ -48,6 +48,9 @@ int main(int argc, char** argv) {
   std::string json_path;
   BuildOptions build;  // one build thread, as Embree's
   app.add_flag("--perfect-splits", build.perfect_splits, "Build the kd-trees with perfect splits (clipped boxes)");
+  app.add_option("--min-split-gain", build.min_split_gain,
+                 "SAH: the gain below which a split counts as a bad refinement (kdrt info --help)")
+      ->capture_default_str();
   app.add_option("--scenes", scenes,
                  "Comma-separated generator names, each at every --sizes, or name:size for one size")
       ->capture_default_str();
@@ -130,6 +133,7 @@ int main(int argc, char** argv) {
     rows.push_back({{"scene", name},
                     {"triangles", scene.triangles.size()},
                     {"perfect_splits", build.perfect_splits},
+                    {"min_split_gain", build.min_split_gain},
                     {"refs_per_triangle", tree.stats.refs_per_triangle},
                     {"max_leaf_prims", tree.stats.max_leaf_prims},
                     {"avg_leaf_prims", tree.stats.avg_leaf_prims},

@@ -43,6 +43,9 @@ void CheckOptions(const BuildOptions& o, const std::string& source) {
   if (!std::isfinite(o.empty_bonus) || o.empty_bonus < 0 || o.empty_bonus > 1) {
     fail("kd-tree empty bonus must be between 0 and 1");
   }
+  if (!std::isfinite(o.min_split_gain) || o.min_split_gain < 0 || o.min_split_gain >= 1) {
+    fail("kd-tree minimum split gain must be at least 0 and below 1");
+  }
   if (o.max_depth < -1 || o.max_depth > kMaxTreeDepth) {
     fail("kd-tree max depth must be -1 (automatic) or 0.." + std::to_string(kMaxTreeDepth));
   }
@@ -136,8 +139,14 @@ KdTree BuildKdTree(const Scene& scene, const BuildOptions& options) {
     std::vector<uint32_t> none;
     writer.AddLeaf(none, LeafCause::kFew);
   } else if (options.method == SplitMethod::kSah) {
-    accel::BuildSahTree(input, options.traversal_cost, options.isect_cost, options.empty_bonus,
-                        options.max_leaf_prims, options.perfect_splits, &writer, options.threads);
+    accel::SahParams params;
+    params.traversal_cost = options.traversal_cost;
+    params.isect_cost = options.isect_cost;
+    params.empty_bonus = options.empty_bonus;
+    params.max_leaf_prims = options.max_leaf_prims;
+    params.perfect_splits = options.perfect_splits;
+    params.min_split_gain = options.min_split_gain;
+    accel::BuildSahTree(input, params, &writer, options.threads);
   } else {
     accel::BuildSimpleTree(input, options.method == SplitMethod::kMedian, options.max_leaf_prims,
                            &writer);

@@ -31,6 +31,10 @@ struct BuildOptions {
   int max_depth = -1;        // -1: round(8 + 1.3 log2 N)
   int max_leaf_prims = 1;    // a node with this many or fewer becomes a leaf
   bool perfect_splits = false;  // clip triangles to the node box (SAH only)
+  // SAH: a split that does not cost less than (1 - G) x the leaf counts
+  // towards the bad-refinement limit (0: pbrt-v3's rule, any split cheaper
+  // than the leaf is good; docs/kdtree.md, "Minimum split gain").
+  float min_split_gain = 0.0f;
   int threads = 1;           // SAH build threads (0: all cores); the tree does not depend on it
 };
 

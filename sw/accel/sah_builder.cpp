@@ -142,15 +142,15 @@ struct DeferredSubtree {
 
 class SahBuilder {
  public:
-  SahBuilder(const BuildInput& input, float traversal_cost, float isect_cost, float empty_bonus,
-             int max_leaf_prims, bool perfect_splits, TreeWriter* writer)
+  SahBuilder(const BuildInput& input, const SahParams& params, TreeWriter* writer)
       : in_(input),
         tris_(*input.triangles),
-        traversal_cost_(traversal_cost),
-        isect_cost_(isect_cost),
-        empty_bonus_(empty_bonus),
-        max_leaf_prims_(max_leaf_prims),
-        perfect_(perfect_splits),
+        traversal_cost_(params.traversal_cost),
+        isect_cost_(params.isect_cost),
+        empty_bonus_(params.empty_bonus),
+        max_leaf_prims_(params.max_leaf_prims),
+        perfect_(params.perfect_splits),
+        good_split_below_(1.0 - static_cast<double>(params.min_split_gain)),
         writer_(writer),
         side_(tris_.size(), kBoth) {}
 
@@ -214,6 +214,10 @@ class SahBuilder {
   // is still taken up to kMaxBadRefines times on a path (the greedy cost
   // cannot see that splitting further often pays off), unless it is hopeless
   // (more than 4x the leaf cost in a node of fewer than 16 triangles).
+  // With a minimum gain G, a split must cost less than (1 - G) x the leaf
+  // not to count as bad: where every split leaves most triangles on both
+  // sides (long overlapping slivers), the greedy cost accepts gains of a
+  // fraction of a test, level after level, and duplicates every sliver.
   void Build(const NodeEvents& node, int depth, int bad_refines) {
     if (deferred_ && depth == defer_depth_ && node.count >= defer_min_count_) {
       Defer(node, depth, bad_refines);
@@ -233,7 +237,7 @@ class SahBuilder {
       MakeLeaf(node, LeafCause::kNoPlane);
       return;
     }
-    if (!(split.cost < leaf_cost)) ++bad_refines;
+    if (!(split.cost < leaf_cost * good_split_below_)) ++bad_refines;
     if (bad_refines >= kMaxBadRefines) {
       MakeLeaf(node, LeafCause::kNoGain);
       return;
@@ -625,6 +629,7 @@ class SahBuilder {
   const float empty_bonus_;
   const int max_leaf_prims_;
   const bool perfect_;
+  const double good_split_below_;  // x the leaf cost: a split not below it is a bad refinement
   TreeWriter* writer_;
 
   EventList arena_[3];         // stack of event lists, one per axis
@@ -689,14 +694,10 @@ void Assemble(const std::vector<img::Node>& top, const std::vector<uint32_t>& to
 
 }  // namespace
 
-void BuildSahTree(const BuildInput& input, float traversal_cost, float isect_cost,
-                  float empty_bonus, int max_leaf_prims, bool perfect_splits,
-                  TreeWriter* writer, int threads) {
+void BuildSahTree(const BuildInput& input, const SahParams& params, TreeWriter* writer, int threads) {
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (threads == 1 || input.ids.size() < 2 * kMinDeferredTriangles) {
-    SahBuilder(input, traversal_cost, isect_cost, empty_bonus, max_leaf_prims, perfect_splits,
-               writer)
-        .Run();
+    SahBuilder(input, params, writer).Run();
     return;
   }
   // The top levels serially, down to a depth with about 4 subtrees per
@@ -711,8 +712,7 @@ void BuildSahTree(const BuildInput& input, float traversal_cost, float isect_cos
   std::vector<DeferredSubtree> subtrees;
   {
     TreeWriter top_writer(&top, &top_lists, writer->source());
-    SahBuilder builder(input, traversal_cost, isect_cost, empty_bonus, max_leaf_prims, perfect_splits,
-                       &top_writer);
+    SahBuilder builder(input, params, &top_writer);
     builder.DeferAt(depth, kMinDeferredTriangles, &subtrees);
     builder.Run();
     writer->MergeCauses(top_writer.causes());
@@ -729,8 +729,7 @@ void BuildSahTree(const BuildInput& input, float traversal_cost, float isect_cos
       DeferredSubtree& d = subtrees[order[k]];
       try {
         TreeWriter sub_writer(&d.nodes, &d.lists, writer->source());
-        SahBuilder(input, traversal_cost, isect_cost, empty_bonus, max_leaf_prims, perfect_splits, &sub_writer)
-            .RunSubtree(d);
+        SahBuilder(input, params, &sub_writer).RunSubtree(d);
         d.causes = sub_writer.causes();
       } catch (...) {
         errors[order[k]] = std::current_exception();

@@ -1,6 +1,6 @@
 // The parallel SAH build (BuildOptions::threads) gives the serial build's
 // tree: the same nodes and leaf lists, entry for entry, on every generator,
-// with and without perfect splits, for several thread counts, including
+// with and without perfect splits and with a minimum split gain, for several thread counts, including
 // more threads than subtrees.
 #include <gtest/gtest.h>
 
@@ -25,16 +25,19 @@ class ParallelBuild : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ParallelBuild, SameTreeAsTheSerialBuild) {
   const Scene scene = GenerateScene(GetParam(), 30000);
-  for (bool perfect : {false, true}) {
+  for (int variant = 0; variant < 3; ++variant) {
+    const bool perfect = variant == 1;
     BuildOptions serial;
     serial.perfect_splits = perfect;
+    serial.min_split_gain = variant == 2 ? 0.1f : 0.0f;
     serial.threads = 1;
     const KdTree expected = BuildKdTree(scene, serial);
     for (int threads : {2, 3, 16}) {
       BuildOptions o = serial;
       o.threads = threads;
       const KdTree got = BuildKdTree(scene, o);
-      const std::string what = std::string(GetParam()) + (perfect ? " perfect" : "") + ", " +
+      const std::string what = std::string(GetParam()) + (perfect ? " perfect" : "") +
+                               (variant == 2 ? " min gain 0.1" : "") + ", " +
                                std::to_string(threads) + " threads";
       ASSERT_EQ(got.nodes.size(), expected.nodes.size()) << what;
       EXPECT_EQ(FirstDifference(got, expected), expected.nodes.size()) << what << ": first differing node";

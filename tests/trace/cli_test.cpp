@@ -214,6 +214,27 @@ TEST_F(Cli, InfoAndGen) {
   EXPECT_GT(fs::file_size(Path("t.img")), 128u);
 }
 
+// --min-split-gain reaches the builder (fewer references on gears) and a
+// value outside [0, 1) is refused with a clear error and no output.
+TEST_F(Cli, MinSplitGain) {
+  auto references = [&](const std::string& extra) {
+    const RunResult r = RunKdrt("info gen:gears:5000 --json " + Path("g.json") + " " + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    std::ifstream f(Path("g.json"));
+    return nlohmann::json::parse(f)["tree"]["references"].get<uint64_t>();
+  };
+  const uint64_t plain = references(""), gain = references("--min-split-gain 0.1");
+  EXPECT_LT(gain * 2, plain) << plain << " against " << gain;
+  fs::remove(Path("g.json"));
+  for (const char* bad : {"1", "-0.5", "nan"}) {
+    const RunResult r =
+        RunKdrt(std::string("render gen:gears:500 --min-split-gain ") + bad + " -o " + Path("x.png"));
+    EXPECT_EQ(r.exit_code, 1) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("minimum split gain"), std::string::npos) << r.output;
+    EXPECT_EQ(FileCount(), 0u) << bad;
+  }
+}
+
 // 70,000 copies of one triangle make one leaf of 70,000: more than a packed
 // 16-bit format's node can count (docs/memory-image.md). kdrt info says so
 // and goes on; render in fp16 refuses with the reason and writes nothing,
