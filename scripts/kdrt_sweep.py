@@ -39,6 +39,7 @@ PARAMS = {
     "l2_kb": "--l2-kb",
     "trav_format": "--trav-format",
     "image_format": "--image-format",
+    "min_split_gain": "--min-split-gain",
 }
 SPEC_KEYS = {"scenes", "formats", "res", "params", "model", "shade", "allow_overflow"}
 # What each point reports, from `kdrt sim --json`.

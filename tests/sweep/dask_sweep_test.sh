@@ -73,6 +73,29 @@ assert rows["bf16"] < rows["fp32"], rows
 PY
 ls "$work/image/plots/"*image_format.svg > /dev/null || fail "no plot against image_format"
 
+# The tree as a parameter (--min-split-gain): on gears' overlapping slivers a
+# minimum split gain makes a tree of fewer nodes (each point's report has
+# its tree), and the CSV has the column.
+cat > "$work/gain.yaml" << 'SPEC'
+scenes: [gen:gears:2000]
+res: 16x16
+model: fast
+params:
+  min_split_gain: [0, 0.1]
+SPEC
+"$kdrt" sweep "$work/gain.yaml" -o "$work/gain" --jobs 2 > /dev/null 2> "$work/gain.err" ||
+  { cat "$work/gain.err"; fail "min-split-gain sweep"; }
+/usr/bin/python3 - "$work/gain" << 'PY' || fail "min_split_gain column"
+import csv, json, sys
+rows = {float(r["min_split_gain"]): r for r in csv.DictReader(open(sys.argv[1] + "/sweep.csv"))}
+assert sorted(rows) == [0.0, 0.1], rows
+nodes = {}
+for r in rows.values():
+    point = json.load(open(sys.argv[1] + "/points/" + r["id"] + ".json"))
+    nodes[float(r["min_split_gain"])] = point["report"]["tree"]["nodes"]
+assert nodes[0.1] * 3 < nodes[0.0] * 2, nodes
+PY
+
 # A Dask cluster on loopback.
 port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 dask-scheduler --host 127.0.0.1 --port "$port" --no-dashboard > "$work/scheduler.log" 2>&1 &
