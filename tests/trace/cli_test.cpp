@@ -214,17 +214,25 @@ TEST_F(Cli, InfoAndGen) {
   EXPECT_GT(fs::file_size(Path("t.img")), 128u);
 }
 
-// --min-split-gain reaches the builder (fewer references on gears) and a
-// value outside [0, 1) is refused with a clear error and no output.
+// --min-split-gain reaches the builder (a smaller tree on gears, the same in
+// render and sim), the JSON names the options, and a value outside [0, 1)
+// is refused with a clear error and no output.
 TEST_F(Cli, MinSplitGain) {
-  auto references = [&](const std::string& extra) {
-    const RunResult r = RunKdrt("info gen:gears:5000 --json " + Path("g.json") + " " + extra);
+  // The JSON says which tree its numbers are for ("build").
+  auto nodes = [&](const std::string& command, const std::string& extra, float gain) {
+    const RunResult r =
+        RunKdrt(command + " gen:gears:5000 --res 16x16 -q --json " + Path("g.json") + " " + extra);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     std::ifstream f(Path("g.json"));
-    return nlohmann::json::parse(f)["tree"]["references"].get<uint64_t>();
+    const nlohmann::json j = nlohmann::json::parse(f);
+    EXPECT_EQ(j["build"]["min_split_gain"].get<float>(), gain) << command;
+    EXPECT_EQ(j["build"]["method"], "sah") << command;
+    EXPECT_GE(j["build"]["max_depth"].get<uint32_t>(), j["tree"]["max_depth"].get<uint32_t>()) << command;
+    return j["tree"]["nodes"].get<uint64_t>();
   };
-  const uint64_t plain = references(""), gain = references("--min-split-gain 0.1");
+  const uint64_t plain = nodes("render", "", 0.0f), gain = nodes("render", "--min-split-gain 0.1", 0.1f);
   EXPECT_LT(gain * 2, plain) << plain << " against " << gain;
+  EXPECT_EQ(nodes("sim", "--model fast --min-split-gain 0.1", 0.1f), gain);
   fs::remove(Path("g.json"));
   for (const char* bad : {"1", "-0.5", "nan"}) {
     const RunResult r =
