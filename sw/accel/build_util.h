@@ -135,19 +135,11 @@ class TreeWriter {
 bool ClippedTriangleBox(const Triangle& t, const Box& cell, Box* out);
 
 // The builders. Each appends exactly one subtree (the whole tree) to writer.
-// The SAH build runs on `threads` threads (0: all cores); the tree is the
-// serial build's, node for node.
-struct SahParams {
-  float traversal_cost = 1.0f;
-  float isect_cost = 80.0f;
-  float empty_bonus = 0.5f;
-  int max_leaf_prims = 1;
-  bool perfect_splits = false;
-  // A split that does not cost less than (1 - min_split_gain) x the leaf is
-  // a bad refinement (BuildOptions::min_split_gain).
-  float min_split_gain = 0.0f;
-};
-void BuildSahTree(const BuildInput& input, const SahParams& params, TreeWriter* writer, int threads = 1);
+// The SAH build reads options' costs, leaf size, perfect splits and minimum
+// split gain (the depth limit is input.max_depth) and runs on
+// options.threads threads (0: all cores); the tree is the serial build's,
+// node for node.
+void BuildSahTree(const BuildInput& input, const BuildOptions& options, TreeWriter* writer);
 void BuildSimpleTree(const BuildInput& input, bool median, int max_leaf_prims,
                      TreeWriter* writer);
 

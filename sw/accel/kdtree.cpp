@@ -139,14 +139,7 @@ KdTree BuildKdTree(const Scene& scene, const BuildOptions& options) {
     std::vector<uint32_t> none;
     writer.AddLeaf(none, LeafCause::kFew);
   } else if (options.method == SplitMethod::kSah) {
-    accel::SahParams params;
-    params.traversal_cost = options.traversal_cost;
-    params.isect_cost = options.isect_cost;
-    params.empty_bonus = options.empty_bonus;
-    params.max_leaf_prims = options.max_leaf_prims;
-    params.perfect_splits = options.perfect_splits;
-    params.min_split_gain = options.min_split_gain;
-    accel::BuildSahTree(input, params, &writer, options.threads);
+    accel::BuildSahTree(input, options, &writer);
   } else {
     accel::BuildSimpleTree(input, options.method == SplitMethod::kMedian, options.max_leaf_prims,
                            &writer);
@@ -155,6 +148,7 @@ KdTree BuildKdTree(const Scene& scene, const BuildOptions& options) {
   tree.stats.leaf_causes = writer.causes();
   tree.stats.leaf_causes.recorded = true;
   tree.stats.degenerate_triangles = degenerate;
+  tree.stats.depth_limit = static_cast<uint32_t>(input.max_depth);
   tree.stats.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;

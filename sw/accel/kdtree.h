@@ -98,6 +98,7 @@ struct TreeStats {
   uint32_t leaves = 0;
   uint32_t empty_leaves = 0;
   uint32_t max_depth = 0;         // root has depth 0
+  uint32_t depth_limit = 0;       // the depth limit the build used (BuildOptions::max_depth resolved)
   double avg_leaf_depth = 0;      // over all leaves
   uint32_t max_leaf_prims = 0;
   double avg_leaf_prims = 0;      // over non-empty leaves
@@ -121,8 +122,8 @@ struct KdTree {
 // does not fit the memory image's 30-bit indices.
 KdTree BuildKdTree(const Scene& scene, const BuildOptions& options = {});
 
-// The statistics of a finished tree (everything but degenerate_triangles and
-// build_seconds), recounted from its nodes; `triangles` is the number of
+// The statistics of a finished tree (everything but degenerate_triangles,
+// depth_limit and build_seconds), recounted from its nodes; `triangles` is the number of
 // non-degenerate triangles. sah_cost uses options' traversal and
 // intersection costs and the cells implied by tree.bounds_min/max.
 TreeStats ComputeTreeStats(const KdTree& tree, size_t triangles, const BuildOptions& options);

@@ -142,15 +142,15 @@ struct DeferredSubtree {
 
 class SahBuilder {
  public:
-  SahBuilder(const BuildInput& input, const SahParams& params, TreeWriter* writer)
+  SahBuilder(const BuildInput& input, const BuildOptions& options, TreeWriter* writer)
       : in_(input),
         tris_(*input.triangles),
-        traversal_cost_(params.traversal_cost),
-        isect_cost_(params.isect_cost),
-        empty_bonus_(params.empty_bonus),
-        max_leaf_prims_(params.max_leaf_prims),
-        perfect_(params.perfect_splits),
-        good_split_below_(1.0 - static_cast<double>(params.min_split_gain)),
+        traversal_cost_(options.traversal_cost),
+        isect_cost_(options.isect_cost),
+        empty_bonus_(options.empty_bonus),
+        max_leaf_prims_(options.max_leaf_prims),
+        perfect_(options.perfect_splits),
+        good_split_below_(1.0 - static_cast<double>(options.min_split_gain)),
         writer_(writer),
         side_(tris_.size(), kBoth) {}
 
@@ -694,10 +694,11 @@ void Assemble(const std::vector<img::Node>& top, const std::vector<uint32_t>& to
 
 }  // namespace
 
-void BuildSahTree(const BuildInput& input, const SahParams& params, TreeWriter* writer, int threads) {
+void BuildSahTree(const BuildInput& input, const BuildOptions& options, TreeWriter* writer) {
+  int threads = options.threads;
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (threads == 1 || input.ids.size() < 2 * kMinDeferredTriangles) {
-    SahBuilder(input, params, writer).Run();
+    SahBuilder(input, options, writer).Run();
     return;
   }
   // The top levels serially, down to a depth with about 4 subtrees per
@@ -712,7 +713,7 @@ void BuildSahTree(const BuildInput& input, const SahParams& params, TreeWriter* 
   std::vector<DeferredSubtree> subtrees;
   {
     TreeWriter top_writer(&top, &top_lists, writer->source());
-    SahBuilder builder(input, params, &top_writer);
+    SahBuilder builder(input, options, &top_writer);
     builder.DeferAt(depth, kMinDeferredTriangles, &subtrees);
     builder.Run();
     writer->MergeCauses(top_writer.causes());
@@ -729,7 +730,7 @@ void BuildSahTree(const BuildInput& input, const SahParams& params, TreeWriter* 
       DeferredSubtree& d = subtrees[order[k]];
       try {
         TreeWriter sub_writer(&d.nodes, &d.lists, writer->source());
-        SahBuilder(input, params, &sub_writer).RunSubtree(d);
+        SahBuilder(input, options, &sub_writer).RunSubtree(d);
         d.causes = sub_writer.causes();
       } catch (...) {
         errors[order[k]] = std::current_exception();

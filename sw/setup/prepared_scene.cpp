@@ -102,13 +102,12 @@ void PrintLeafCauses(const LeafCauses& c) {
 
 }  // namespace
 
-nlohmann::json BuildOptionsJson(const BuildOptions& o, const PreparedScene& p) {
-  const size_t triangles = p.scene.triangles.size() - p.tree.stats.degenerate_triangles;
+nlohmann::json BuildOptionsJson(const BuildOptions& o, const TreeStats& s) {
   return {{"method", SplitMethodName(o.method)},
           {"traversal_cost", o.traversal_cost},
           {"isect_cost", o.isect_cost},
           {"empty_bonus", o.empty_bonus},
-          {"max_depth", o.max_depth >= 0 ? o.max_depth : DefaultMaxDepth(triangles)},
+          {"max_depth", s.depth_limit},
           {"max_leaf_prims", o.max_leaf_prims},
           {"perfect_splits", o.perfect_splits},
           {"min_split_gain", o.min_split_gain}};

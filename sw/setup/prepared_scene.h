@@ -53,7 +53,7 @@ PreparedScene PrepareScene(Scene scene, const SceneSpec& spec);
 nlohmann::json TreeStatsJson(const TreeStats& s);
 // The options a kd-tree was built with (`"build"` in the commands' JSON), so a
 // report says which tree its numbers are for; max_depth is the one used.
-nlohmann::json BuildOptionsJson(const BuildOptions& o, const PreparedScene& p);
+nlohmann::json BuildOptionsJson(const BuildOptions& o, const TreeStats& s);
 void PrintTreeStats(const PreparedScene& p);
 
 }  // namespace kdrt

@@ -89,7 +89,7 @@ int Run(const InfoArgs& args) {
                         {"triangles", p.scene.triangles.size()},
                         {"accel", SplitMethodName(args.scene.build.method)},
                         {"tree", TreeStatsJson(p.tree.stats)},
-                        {"build", BuildOptionsJson(args.scene.build, p)},
+                        {"build", BuildOptionsJson(args.scene.build, p.tree.stats)},
                         {"image_format", fp::Format{layout.e, layout.m}.Name()},
                         {"image_bytes", chosen.size()},
                         {"images", images},

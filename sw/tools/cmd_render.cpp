@@ -128,7 +128,7 @@ int Run(const RenderArgs& args) {
       {"precision", check.requirement.Json()},
       {"warnings", check.warnings},
   };
-  if (!p.structure) j["build"] = BuildOptionsJson(args.scene.build, p);
+  if (!p.structure) j["build"] = BuildOptionsJson(args.scene.build, p.tree.stats);
 
   // Shading: the secondary passes, traced by the same model.
   ShadedFrame frame;

@@ -155,7 +155,7 @@ int RunSim(SimArgs args) {
   sim::AddScene({p.scene.source, ray_set.width, ray_set.height, p.scene.triangles.size(), p.tree.stats.nodes,
                  p.tree.stats.max_depth},
                 &report);
-  report["build"] = BuildOptionsJson(args.scene.build, p);
+  report["build"] = BuildOptionsJson(args.scene.build, p.tree.stats);
   report["precision"] = check.requirement.Json();
   report["warnings"] = check.warnings;
   for (const std::string& w : run_warnings) report["warnings"].push_back(w);

@@ -15,6 +15,12 @@ cleanup() {
 }
 trap cleanup EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# Runs the sweep $work/NAME.yaml into $work/NAME on the local pool, or fails
+# with its stderr.
+local_sweep() {
+  "$kdrt" sweep "$work/$1.yaml" -o "$work/$1" --jobs 2 > /dev/null 2> "$work/$1.err" ||
+    { cat "$work/$1.err"; fail "$1 sweep"; }
+}
 
 cat > "$work/spec.yaml" << 'SPEC'
 scenes: [gen:balls:300, gen:room:300]
@@ -47,8 +53,7 @@ allow_overflow: true
 params:
   stack_depth: [2, 40]
 SPEC
-"$kdrt" sweep "$work/stack.yaml" -o "$work/stack" --jobs 2 > /dev/null 2> "$work/stack.err" ||
-  { cat "$work/stack.err"; fail "stack-depth sweep"; }
+local_sweep stack
 /usr/bin/python3 - "$work/stack/sweep.csv" << 'PY' || fail "overflows column"
 import csv, sys
 rows = {int(r["stack_depth"]): int(r["overflows"]) for r in csv.DictReader(open(sys.argv[1]))}
@@ -64,8 +69,7 @@ model: fast
 params:
   image_format: [fp32, bf16]
 SPEC
-"$kdrt" sweep "$work/image.yaml" -o "$work/image" --jobs 2 > /dev/null 2> "$work/image.err" ||
-  { cat "$work/image.err"; fail "image-format sweep"; }
+local_sweep image
 /usr/bin/python3 - "$work/image/sweep.csv" << 'PY' || fail "bytes_per_ray by image_format"
 import csv, sys
 rows = {r["image_format"]: float(r["bytes_per_ray"]) for r in csv.DictReader(open(sys.argv[1]))}
@@ -83,8 +87,7 @@ model: fast
 params:
   min_split_gain: [0, 0.1]
 SPEC
-"$kdrt" sweep "$work/gain.yaml" -o "$work/gain" --jobs 2 > /dev/null 2> "$work/gain.err" ||
-  { cat "$work/gain.err"; fail "min-split-gain sweep"; }
+local_sweep gain
 /usr/bin/python3 - "$work/gain" << 'PY' || fail "min_split_gain column"
 import csv, json, sys
 rows = {float(r["min_split_gain"]): r for r in csv.DictReader(open(sys.argv[1] + "/sweep.csv"))}
