@@ -90,14 +90,22 @@ int RunAndWait(const std::vector<std::string>& args) {
 
 }  // namespace
 
+bool QuickModels() {
+  const char* v = std::getenv("KDRT_QUICK_MODELS");
+  return v && *v && std::strcmp(v, "0") != 0;
+}
+
 ModelLocation LocateModel(const ConfigChoice& choice) {
   ModelLocation loc;
   if (choice.prebuilt) {
     const std::string name = "kdrt-sim-" + choice.config.Format().Name();
     loc = {std::string(kBuildDir) + "/bin/" + name, name};
   } else {
-    const std::string key = choice.config.Key();
-    loc = {std::string(kBuildDir) + "/sim-models/" + key + "/kdrt-sim", "kdrt-sim-model-" + key};
+    // A quick build lives beside the optimised one, never in its place.
+    loc.quick = QuickModels();
+    const std::string dir = choice.config.Key() + (loc.quick ? ".quick" : "");
+    loc.path = std::string(kBuildDir) + "/sim-models/" + dir + "/kdrt-sim";
+    loc.target = "kdrt-sim-model-" + dir;
   }
   const bool exists = fs::exists(loc.path);
   loc.stale = exists && OlderThanSources(loc.path);
@@ -121,7 +129,7 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
   if (!choice.prebuilt) {
     // The list sim/CMakeLists.txt defines a target per line of: the key and
     // Verilator's -G options.
-    std::string line = choice.config.Key();
+    std::string line = choice.config.Key() + (loc.quick ? ".quick" : "");
     for (const std::string& g : choice.config.VerilatorDefines()) line += " " + g;
     const fs::path list = models_dir / "models.txt";
     bool listed = false;
@@ -136,11 +144,15 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
       if (!out) throw std::runtime_error("cannot write " + list.string());
     }
   }
-  const std::string log = (models_dir / (choice.config.Key() + ".build.log")).string();
+  const std::string log =
+      (models_dir / (choice.config.Key() + (loc.quick ? ".quick" : "") + ".build.log")).string();
   std::fprintf(stderr,
-               "kdrt sim: %s the simulation model %s (Verilator, once; about 1-2 minutes on 2 cores)\n"
+               "kdrt sim: %s the simulation model %s (Verilator, once; about 1-2 minutes on 2 cores)%s\n"
                "kdrt sim: log in %s\n",
                loc.stale ? "sources changed since it was built: rebuilding" : "building", choice.config.Key().c_str(),
+               loc.quick ? ", a quick build (KDRT_QUICK_MODELS: its C++ unoptimised, about 3x less to compile, "
+                           "several times slower to run)"
+                         : "",
                log.c_str());
   const auto start = std::chrono::steady_clock::now();
   // Configure first: the new line in models.txt defines the target.

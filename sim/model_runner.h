@@ -21,6 +21,10 @@ struct ModelLocation {
   std::string target;  // its CMake target
   bool built = false;  // it exists and is newer than every source it is built from
   bool stale = false;  // it exists, but a source (rtl/, sim/, sw/) changed since
+  // A scene-sized model compiled without optimisation, because the
+  // environment has KDRT_QUICK_MODELS set (the tests do: they run a few
+  // hundred rays on a model they build, so its compile time is their cost).
+  bool quick = false;
 };
 ModelLocation LocateModel(const ConfigChoice& choice);
 

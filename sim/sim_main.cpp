@@ -157,6 +157,13 @@ int Run(const ModelArgs& args) {
       ri.run = &run;
       report = ReportJson(ri);
     }
+#ifdef KDRT_SIM_QUICK_BUILD
+    // Built for the tests (KDRT_QUICK_MODELS): its sim speed is not the
+    // model's, and the report says so.
+    report["model_build"] = "quick";
+#else
+    report["model_build"] = "optimised";
+#endif
   } catch (const SimFailure& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "\nkdrt sim: %s\n", e.what());

@@ -270,8 +270,9 @@ void PrintReport(const nlohmann::json& j, std::FILE* out) {
   const auto& rp = j["reference_per_ray"];
   std::fprintf(out, "reference/ray  %.2f nodes, %.2f leaves, %.2f triangle tests\n", d(rp["nodes"]),
                d(rp["leaves"]), d(rp["tri_tests"]));
-  std::fprintf(out, "sim speed      %.3f s, %.0f cycles/s, %.0f rays/s\n", d(j["sim_seconds"]),
-               d(j["sim_cycles_per_second"]), d(j["sim_rays_per_second"]));
+  std::fprintf(out, "sim speed      %.3f s, %.0f cycles/s, %.0f rays/s%s\n", d(j["sim_seconds"]),
+               d(j["sim_cycles_per_second"]), d(j["sim_rays_per_second"]),
+               j.value("model_build", "") == "quick" ? " (a quick build, unoptimised: KDRT_QUICK_MODELS)" : "");
 }
 
 nlohmann::json FrameTotals(const nlohmann::json& passes) {

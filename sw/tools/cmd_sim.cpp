@@ -96,7 +96,8 @@ int RunSim(SimArgs args) {
                 req.stack_depth, req.node_idx_bits, req.tri_idx_bits, req.addr_bits, req.image_bytes);
     std::printf("model          %s (%s)\n", choice.config.Key().c_str(), choice.prebuilt ? "prebuilt" : "scene-sized");
     const char* state = loc.built ? "built" : loc.stale ? "out of date: sources changed, rebuilt on use" : "not built yet";
-    std::printf("executable     %s (%s)\n", loc.path.c_str(), state);
+    std::printf("executable     %s (%s%s)\n", loc.path.c_str(), state,
+                loc.quick ? "; a quick build, unoptimised: KDRT_QUICK_MODELS" : "");
     return 0;
   }
   if (args.build_model) {

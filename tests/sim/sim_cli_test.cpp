@@ -49,6 +49,11 @@ bool LongRun() {
   return v && std::string(v) == "1";
 }
 
+bool QuickModels() {
+  const char* v = std::getenv("KDRT_QUICK_MODELS");
+  return v && *v && std::string(v) != "0";
+}
+
 class SimCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -650,6 +655,10 @@ TEST_F(SimCli, StackOverflowMatchesTheReferenceAndTheFastModel) {
     EXPECT_EQ(f["cycles"], j["cycles"]);
     EXPECT_EQ(f["perf_counts"], j["perf_counts"]);
     EXPECT_EQ(f["thread_states"], j["thread_states"]);
+    // ctest builds it unoptimised (KDRT_QUICK_MODELS), and the report says so.
+    if (QuickModels()) {
+      EXPECT_EQ(j["model_build"], "quick");
+    }
   }
   // A reference that disagrees on an overflowed ray's record (ray 150 of
   // these camera rays overflows) is caught.
@@ -734,6 +743,25 @@ TEST_F(SimCli, FormatBelowTheRequirementWarnsOrWithStrictFails) {
   EXPECT_EQ("kdrt: warning: " + j["warnings"][0].get<std::string>(),
             s.output.substr(at, s.output.find('\n', at) - at));
   EXPECT_LT(j["hits"].get<uint64_t>(), some.size() / 2);  // most rays miss: no longer silently
+}
+
+// A quick build (KDRT_QUICK_MODELS) lives beside the optimised model of the
+// same key, never in its place; the prebuilt models are always optimised.
+TEST_F(SimCli, QuickModelsAreKeptApartAndMarked) {
+  const std::string args = "sim gen:room:300 --node-cache-lines 256 --which-model";
+  const RunResult quick = testing::RunCommand("env KDRT_QUICK_MODELS=1 " + std::string(KDRT_BIN) + " " + args);
+  const RunResult full = testing::RunCommand("env KDRT_QUICK_MODELS=0 " + std::string(KDRT_BIN) + " " + args);
+  ASSERT_EQ(quick.exit_code, 0) << quick.output;
+  ASSERT_EQ(full.exit_code, 0) << full.output;
+  EXPECT_NE(quick.output.find(".quick/kdrt-sim"), std::string::npos) << quick.output;
+  EXPECT_NE(quick.output.find("a quick build, unoptimised"), std::string::npos) << quick.output;
+  EXPECT_EQ(full.output.find(".quick"), std::string::npos) << full.output;
+  EXPECT_EQ(full.output.find("quick build"), std::string::npos) << full.output;
+  const RunResult prebuilt = testing::RunCommand("env KDRT_QUICK_MODELS=1 " + std::string(KDRT_BIN) +
+                                        " sim gen:room:300 --res 4x4 -q -o " + Path("x.png") + " --json " +
+                                        Path("x.json"));
+  ASSERT_EQ(prebuilt.exit_code, 0) << prebuilt.output;
+  EXPECT_EQ(ReadJson(Path("x.json"))["model_build"], "optimised");
 }
 
 TEST_F(SimCli, ModelChoiceFollowsTheScene) {
