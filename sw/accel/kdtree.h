@@ -22,7 +22,12 @@ enum class SplitMethod {
   kMidpoint,  // spatial middle of the node box on the longest axis
 };
 
-// pbrt-v3 KdTreeAccel defaults.
+// What the SAH build asks of a split by default (BuildOptions::min_split_gain):
+// session 21 made 0.1 the default, where it had been 0 (pbrt-v3's rule);
+// `--min-split-gain 0` gives the earlier trees back (docs/kdtree.md).
+inline constexpr float kDefaultMinSplitGain = 0.1f;
+
+// pbrt-v3 KdTreeAccel defaults, but for the minimum split gain.
 struct BuildOptions {
   SplitMethod method = SplitMethod::kSah;
   float traversal_cost = 1.0f;
@@ -34,7 +39,7 @@ struct BuildOptions {
   // SAH: a split that does not cost less than (1 - G) x the leaf counts
   // towards the bad-refinement limit (0: pbrt-v3's rule, any split cheaper
   // than the leaf is good; docs/kdtree.md, "Minimum split gain").
-  float min_split_gain = 0.0f;
+  float min_split_gain = kDefaultMinSplitGain;
   int threads = 1;           // SAH build threads (0: all cores); the tree does not depend on it
 };
 

@@ -21,13 +21,13 @@ struct MethodCase {
   const char* name;
   SplitMethod method;
   bool perfect;
-  float min_split_gain = 0.0f;
+  float min_split_gain = kDefaultMinSplitGain;
 };
 
 const MethodCase kMethods[] = {
     {"sah", SplitMethod::kSah, false},
     {"sah_perfect", SplitMethod::kSah, true},
-    {"sah_min_gain", SplitMethod::kSah, false, 0.1f},
+    {"sah_no_min_gain", SplitMethod::kSah, false, 0.0f},
     {"median", SplitMethod::kMedian, false},
     {"midpoint", SplitMethod::kMidpoint, false},
 };
@@ -305,6 +305,7 @@ TEST(BuildKdTree, RejectsBadInput) {
 TEST(SahTree, MinSplitGainStopsDuplicatingOverlappingSlivers) {
   const Scene scene = GenerateScene("gears", 20000);
   BuildOptions plain;
+  plain.min_split_gain = 0.0f;
   BuildOptions gain;
   gain.min_split_gain = 0.1f;
   const KdTree a = BuildKdTree(scene, plain);

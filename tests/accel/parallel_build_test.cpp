@@ -1,6 +1,6 @@
 // The parallel SAH build (BuildOptions::threads) gives the serial build's
 // tree: the same nodes and leaf lists, entry for entry, on every generator,
-// with and without perfect splits and with a minimum split gain, for several thread counts, including
+// with and without perfect splits and without the default minimum split gain, for several thread counts, including
 // more threads than subtrees.
 #include <gtest/gtest.h>
 
@@ -29,7 +29,7 @@ TEST_P(ParallelBuild, SameTreeAsTheSerialBuild) {
     const bool perfect = variant == 1;
     BuildOptions serial;
     serial.perfect_splits = perfect;
-    serial.min_split_gain = variant == 2 ? 0.1f : 0.0f;
+    serial.min_split_gain = variant == 2 ? 0.0f : kDefaultMinSplitGain;
     serial.threads = 1;
     const KdTree expected = BuildKdTree(scene, serial);
     for (int threads : {2, 3, 16}) {
@@ -37,7 +37,7 @@ TEST_P(ParallelBuild, SameTreeAsTheSerialBuild) {
       o.threads = threads;
       const KdTree got = BuildKdTree(scene, o);
       const std::string what = std::string(GetParam()) + (perfect ? " perfect" : "") +
-                               (variant == 2 ? " min gain 0.1" : "") + ", " +
+                               (variant == 2 ? " min gain 0" : "") + ", " +
                                std::to_string(threads) + " threads";
       ASSERT_EQ(got.nodes.size(), expected.nodes.size()) << what;
       EXPECT_EQ(FirstDifference(got, expected), expected.nodes.size()) << what << ": first differing node";

@@ -230,9 +230,12 @@ TEST_F(Cli, MinSplitGain) {
     EXPECT_GE(j["build"]["max_depth"].get<uint32_t>(), j["tree"]["max_depth"].get<uint32_t>()) << command;
     return j["tree"]["nodes"].get<uint64_t>();
   };
-  const uint64_t plain = nodes("render", "", 0.0f), gain = nodes("render", "--min-split-gain 0.1", 0.1f);
+  const uint64_t plain = nodes("render", "--min-split-gain 0", 0.0f), gain = nodes("render", "--min-split-gain 0.1", 0.1f);
   EXPECT_LT(gain * 2, plain) << plain << " against " << gain;
   EXPECT_EQ(nodes("sim", "--model fast --min-split-gain 0.1", 0.1f), gain);
+  // 0.1 is the default (session 21), in render and sim alike.
+  EXPECT_EQ(nodes("render", "", 0.1f), gain);
+  EXPECT_EQ(nodes("sim", "--model fast", 0.1f), gain);
   fs::remove(Path("g.json"));
   for (const char* bad : {"1", "-0.5", "nan"}) {
     const RunResult r =
