@@ -88,6 +88,13 @@ int RunAndWait(const std::vector<std::string>& args) {
   return WEXITSTATUS(status);
 }
 
+// The name of a scene-sized model's directory, its CMake target (after
+// "kdrt-sim-model-") and its line in models.txt: the configuration's key,
+// and ".quick" for a quick build (sim/CMakeLists.txt compiles those at -O0).
+std::string ModelName(const ConfigChoice& choice, bool quick) {
+  return choice.config.Key() + (quick ? ".quick" : "");
+}
+
 }  // namespace
 
 bool QuickModels() {
@@ -103,9 +110,9 @@ ModelLocation LocateModel(const ConfigChoice& choice) {
   } else {
     // A quick build lives beside the optimised one, never in its place.
     loc.quick = QuickModels();
-    const std::string dir = choice.config.Key() + (loc.quick ? ".quick" : "");
-    loc.path = std::string(kBuildDir) + "/sim-models/" + dir + "/kdrt-sim";
-    loc.target = "kdrt-sim-model-" + dir;
+    const std::string name = ModelName(choice, loc.quick);
+    loc.path = std::string(kBuildDir) + "/sim-models/" + name + "/kdrt-sim";
+    loc.target = "kdrt-sim-model-" + name;
   }
   const bool exists = fs::exists(loc.path);
   loc.stale = exists && OlderThanSources(loc.path);
@@ -129,7 +136,7 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
   if (!choice.prebuilt) {
     // The list sim/CMakeLists.txt defines a target per line of: the key and
     // Verilator's -G options.
-    std::string line = choice.config.Key() + (loc.quick ? ".quick" : "");
+    std::string line = ModelName(choice, loc.quick);
     for (const std::string& g : choice.config.VerilatorDefines()) line += " " + g;
     const fs::path list = models_dir / "models.txt";
     bool listed = false;
@@ -144,8 +151,7 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
       if (!out) throw std::runtime_error("cannot write " + list.string());
     }
   }
-  const std::string log =
-      (models_dir / (choice.config.Key() + (loc.quick ? ".quick" : "") + ".build.log")).string();
+  const std::string log = (models_dir / (ModelName(choice, loc.quick) + ".build.log")).string();
   std::fprintf(stderr,
                "kdrt sim: %s the simulation model %s (Verilator, once; about 1-2 minutes on 2 cores)%s\n"
                "kdrt sim: log in %s\n",

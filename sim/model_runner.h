@@ -28,6 +28,9 @@ struct ModelLocation {
 };
 ModelLocation LocateModel(const ConfigChoice& choice);
 
+// Whether KDRT_QUICK_MODELS asks for quick builds (set, not empty, not "0").
+bool QuickModels();
+
 // Builds the model with CMake in the build tree this program belongs to
 // (a few minutes; progress and the log path on stderr). A lock keeps
 // concurrent runs from building at the same time. Throws on failure, with the

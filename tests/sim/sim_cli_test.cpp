@@ -26,6 +26,7 @@
 
 #include "fp/format.h"
 #include "scene/nff_writer.h"
+#include "sim/model_runner.h"
 #include "tests/common/moved_sphere.h"
 #include "tests/trace/trace_test_util.h"
 #include "trace/images.h"
@@ -47,11 +48,6 @@ std::string ReadBytes(const std::string& path) {
 bool LongRun() {
   const char* v = std::getenv("KDRT_LONG");
   return v && std::string(v) == "1";
-}
-
-bool QuickModels() {
-  const char* v = std::getenv("KDRT_QUICK_MODELS");
-  return v && *v && std::string(v) != "0";
 }
 
 class SimCli : public ::testing::Test {
@@ -656,7 +652,7 @@ TEST_F(SimCli, StackOverflowMatchesTheReferenceAndTheFastModel) {
     EXPECT_EQ(f["perf_counts"], j["perf_counts"]);
     EXPECT_EQ(f["thread_states"], j["thread_states"]);
     // ctest builds it unoptimised (KDRT_QUICK_MODELS), and the report says so.
-    if (QuickModels()) {
+    if (sim::QuickModels()) {
       EXPECT_EQ(j["model_build"], "quick");
     }
   }
