@@ -60,22 +60,25 @@ class RrArb {
 };
 
 // rt_cache at the level of its registers (the header comment of
-// rtl/rt_cache.sv): Eval() is the combinational part of one cycle from the
-// registered state, Commit() the clock edge. Miss registers are tracked as
+// rtl/rt_cache.sv): Step() is one cycle, the combinational part from the
+// registered state and then the clock edge. Miss registers are tracked as
 // bit masks (rt_core allows at most 64): valid, beats left to send, line in,
 // no room for another target.
 class Cache {
  public:
+  // A request: its line's key (the line's address is base + key x line
+  // bytes, made only when a miss register takes it) and its tag.
   struct Req {
     bool valid = false;
-    uint64_t key = 0, addr = 0, tag = 0;
+    uint64_t key = 0, tag = 0;
   };
   struct Events {
     uint64_t hit = 0, miss = 0, merge = 0, wait = 0, wait_inflight = 0, wait_mshr = 0;
   };
 
-  Cache(int lines, int ways, int line_beats, int mshrs, int targets, bool miss_port)
-      : set_mask_(static_cast<uint64_t>(lines / ways) - 1), ways_(ways), way_bits_(__builtin_ctz(ways)),
+  Cache(int lines, int ways, int line_beats, int mshrs, int targets, bool miss_port, uint64_t base,
+        uint64_t line_bytes)
+      : base_(base), line_bytes_(line_bytes), set_mask_(static_cast<uint64_t>(lines / ways) - 1), ways_(ways), way_bits_(__builtin_ctz(ways)),
         beats_(line_beats), targets_(targets), mshrs_(mshrs), miss_port_(miss_port),
         all_mshrs_(mshrs >= 64 ? ~uint64_t{0} : (uint64_t{1} << mshrs) - 1), lines_(lines, kNoLine),
         plru_(ways > 1 ? lines / ways : 0, 0), mshr_(mshrs), keys_(mshrs, 0),
@@ -103,7 +106,7 @@ class Cache {
     }
   }
 
-  // Registered outputs, valid before Eval().
+  // Registered outputs, valid before Step().
   bool resp_valid() const { return hit_valid_ | del_valid_; }
   uint64_t resp_tag() const { return del_valid_ ? del_tag_ : hit_tag_; }
   bool mem_valid() const { return held_ | (unsent_ != 0); }
@@ -117,27 +120,25 @@ class Cache {
   // register in use.
   bool MemWait() const { return held_ | ((unsent_ | valid_) != 0); }
 
-  // `r2` is looked at only on the miss-only port (miss_port).
-  void Eval(const Req& r1, const Req& r2, bool resp_ready) {
-    c_.out_take = resp_valid() & resp_ready;
+  // One cycle of the cache: the combinational part from the registered
+  // state (rtl/rt_cache.sv's request and response logic) and then the clock
+  // edge, fused so that what the one decides stays in registers for the
+  // other. `r2` is looked at only on the miss-only port (miss_port);
+  // `resp_ready`: the response register is taken when valid; `mem_taken`:
+  // the memory arbiter took this cache's beat (decided from the registered
+  // mem_valid() before the step); `resp_id` (>= 0): the memory's beat for
+  // {register, beat}. Returns the requests taken: bit 0 r1, bit 1 r2.
+  unsigned Step(const Req& r1, const Req& r2, bool resp_ready, bool mem_taken, int resp_id) {
+    const bool out_take = resp_valid() & resp_ready;
     // A filled line goes out through the delivery register when it is free
     // (or being emptied) and no stalled hit keeps the output.
-    c_.deliver = (done_ != 0) & (!del_valid_ | c_.out_take) & !(hit_valid_ & !del_valid_ & !resp_ready);
-    c_.ready1 = c_.ready2 = c_.hit = c_.m_take = false;
-    // Most cycles of a cache bring no request: nothing to look up or match.
-    if (r1.valid | (r2.valid & miss_port_)) EvalRequests(r1, r2);
-  }
-  // Requests taken this cycle (the caches are always ready when they take).
-  bool accept1() const { return c_.ready1; }
-  bool accept2() const { return c_.ready2; }
-
-  // The clock edge: `mem_taken` (the arbiter took this cache's beat),
-  // `resp_id` (>= 0: the memory's beat for {register, beat}).
-  void Commit(bool mem_taken, int resp_id) {
-    // Nothing to register: no response taken or made, no miss taken, no
-    // beat offered (so none taken or held) and none come in.
-    if (!(c_.out_take | c_.deliver | c_.hit | c_.m_take | mem_valid() | (resp_id >= 0))) return;
-    CommitBusy(mem_taken, resp_id);
+    const bool deliver = (done_ != 0) & (!del_valid_ | out_take) & !(hit_valid_ & !del_valid_ & !resp_ready);
+    const bool use_r2 = r2.valid & miss_port_;
+    // Most cycles of a cache bring no request, and many nothing else: no
+    // response taken or made, no beat offered (so none taken or held) and
+    // none come in.
+    if (!(r1.valid | use_r2 | out_take | deliver | mem_valid() | (resp_id >= 0))) return 0;
+    return StepBusy(r1, r2, use_r2, out_take, deliver, mem_taken, resp_id);
   }
 
   const Events& events() const { return ev_; }
@@ -151,17 +152,6 @@ class Cache {
   // An empty line's key: no request's (keys are line addresses or triangle
   // ids of at most 32 bits).
   static constexpr uint64_t kNoLine = ~uint64_t{0};
-  // What Eval() decided, for Commit().
-  struct Comb {
-    Req m;
-    uint64_t hit_tag = 0;
-    bool out_take = false, deliver = false, ready1 = false, ready2 = false;
-    bool hit = false, m_take = false, m_join = false;
-    int m_join_idx = -1, free_idx = -1;
-    int hit_way = 0;
-    uint64_t hit_set = 0;
-  };
-
   // The miss registers in use for `key`: those of its bucket whose key it is.
   uint64_t Matches(uint64_t key) const {
     uint64_t mask = 0;
@@ -173,91 +163,94 @@ class Cache {
   }
   static size_t Bucket(uint64_t key) { return (key ^ (key >> 6)) & (kBuckets - 1); }
 
-  void EvalRequests(const Req& r1, const Req& r2) {
-    const bool use_r2 = r2.valid && miss_port_;
+  __attribute__((noinline)) unsigned StepBusy(const Req& r1, const Req& r2, bool use_r2, bool out_take,
+                                              bool deliver, bool mem_taken, int resp_id) {
+    // The combinational part.
     const uint64_t free_mask = all_mshrs_ & ~valid_;
     const int free_idx = free_mask ? __builtin_ctzll(free_mask) : -1;
     // A request joins the lowest register of its line still taking targets
     // (not filled, not full).
     const uint64_t joinable = valid_ & ~done_ & ~full_;
+    bool hit = false, m_take = false, m_join = false;
+    int m_join_idx = -1, hit_way = 0;
+    unsigned taken = 0;
+    const Req* m = nullptr;
     if (r1.valid) {
       // A present line is a hit whatever the miss registers hold.
       const int way = FindWay(r1.key);
       const bool lookup_hit = way >= 0;
       const uint64_t match = lookup_hit ? 0 : Matches(r1.key);
       const int join_idx = (match & joinable) ? __builtin_ctzll(match & joinable) : -1;
-      const bool hit_free = !hit_valid_ || (c_.out_take && !del_valid_);
+      const bool hit_free = !hit_valid_ || (out_take && !del_valid_);
       const bool hit_ok = lookup_hit && hit_free;
       const bool join_ok = !lookup_hit && join_idx >= 0;
       const bool alloc_ok = !lookup_hit && !match && free_idx >= 0;
-      c_.ready1 = hit_ok || join_ok || alloc_ok;
-      if (!c_.ready1) ++ev_.wait;
-      if (!lookup_hit && match && join_idx < 0) ++ev_.wait_inflight;
-      if (!lookup_hit && !match && free_idx < 0) ++ev_.wait_mshr;
-      c_.hit = c_.ready1 && lookup_hit;
-      c_.hit_way = way;
-      c_.hit_set = r1.key & set_mask_;
-      if (c_.ready1 && !lookup_hit) {
-        c_.m_take = true;
-        c_.m_join = join_ok;
-        c_.m_join_idx = join_idx;
-        c_.m = r1;
+      const bool ready1 = hit_ok || join_ok || alloc_ok;
+      if (!ready1) {
+        ++ev_.wait;
+        if (!lookup_hit && match && join_idx < 0) ++ev_.wait_inflight;
+        if (!lookup_hit && !match && free_idx < 0) ++ev_.wait_mshr;
       }
+      hit = ready1 && lookup_hit;
+      hit_way = way;
+      if (ready1 && !lookup_hit) {
+        m_take = true;
+        m_join = join_ok;
+        m_join_idx = join_idx;
+        m = &r1;
+      }
+      taken = ready1 ? 1u : 0u;
     }
-    if (use_r2 && !c_.m_take) {
+    if (use_r2 && !m_take) {
       const bool lookup2_hit = FindWay(r2.key) >= 0;
       const uint64_t match2 = lookup2_hit ? 0 : Matches(r2.key);
       const int join2_idx = (match2 & joinable) ? __builtin_ctzll(match2 & joinable) : -1;
       const bool join2_ok = !lookup2_hit && join2_idx >= 0;
       const bool alloc2_ok = !lookup2_hit && !match2 && free_idx >= 0;
-      c_.ready2 = join2_ok || alloc2_ok;
-      if (c_.ready2) {
-        c_.m_take = true;
-        c_.m_join = join2_ok;
-        c_.m_join_idx = join2_idx;
-        c_.m = r2;
+      if (join2_ok || alloc2_ok) {
+        m_take = true;
+        m_join = join2_ok;
+        m_join_idx = join2_idx;
+        m = &r2;
+        taken |= 2u;
       }
     }
-    c_.free_idx = free_idx;
-    if (c_.hit) {
-      ++ev_.hit;
-      c_.hit_tag = r1.tag;
+    if (hit) ++ev_.hit;
+    if (m_take) {
+      ++ev_.miss;
+      if (m_join) ++ev_.merge;
     }
-    if (c_.m_take) ++ev_.miss;
-    if (c_.m_take && c_.m_join) ++ev_.merge;
-  }
 
-  void CommitBusy(bool mem_taken, int resp_id) {
-    // The registered state this cycle ran on, before this edge changes it.
+    // The clock edge, from the registered state this cycle ran on.
     const bool send_valid = mem_valid();
     const int send_idx = send_valid ? SendIdx() : -1;
     const int done_idx = done_ ? __builtin_ctzll(done_) : -1;
-    const int fill_way = c_.deliver ? FillWay(keys_[done_idx]) : 0;
-    if (c_.out_take && del_valid_) {
+    const int fill_way = deliver ? FillWay(keys_[done_idx]) : 0;
+    if (out_take && del_valid_) {
       del_valid_ = false;
-    } else if (c_.out_take) {
+    } else if (out_take) {
       hit_valid_ = false;
     }
-    if (c_.hit) {
+    if (hit) {
       hit_valid_ = true;
-      hit_tag_ = c_.hit_tag;
-      if (ways_ > 1) Touch(c_.hit_set, c_.hit_way);
+      hit_tag_ = r1.tag;
+      if (ways_ > 1) Touch(r1.key & set_mask_, hit_way);
     }
-    if (c_.m_take) {
-      const int idx = c_.m_join ? c_.m_join_idx : c_.free_idx;
+    if (m_take) {
+      const int idx = m_join ? m_join_idx : free_idx;
       Mshr& s = mshr_[idx];
-      if (!c_.m_join) {
+      if (!m_join) {
         bucket_[Bucket(keys_[idx])] &= ~(uint64_t{1} << idx);
-        keys_[idx] = c_.m.key;
+        keys_[idx] = m->key;
         bucket_[Bucket(keys_[idx])] |= uint64_t{1} << idx;
-        s.addr = c_.m.addr;
+        s.addr = base_ + m->key * line_bytes_;
         s.sent = s.got = 0;
         s.cnt = 0;
         s.out = 0;
         valid_ |= uint64_t{1} << idx;
         unsent_ |= uint64_t{1} << idx;
       }
-      tags_[static_cast<size_t>(idx) * targets_ + s.cnt] = c_.m.tag;
+      tags_[static_cast<size_t>(idx) * targets_ + s.cnt] = m->tag;
       if (++s.cnt == targets_) full_ |= uint64_t{1} << idx;
     }
     if (mem_taken) {
@@ -265,12 +258,12 @@ class Cache {
       if (++s.sent == static_cast<uint32_t>(beats_)) unsent_ &= ~(uint64_t{1} << send_idx);
     }
     if (resp_id >= 0) {
-      const int m = resp_id / 4;
-      Mshr& s = mshr_[m];
+      const int mi = resp_id / 4;
+      Mshr& s = mshr_[mi];
       s.got |= 1u << (resp_id % 4);
-      if (s.got == (1u << beats_) - 1) done_ |= uint64_t{1} << m;
+      if (s.got == (1u << beats_) - 1) done_ |= uint64_t{1} << mi;
     }
-    if (c_.deliver) {
+    if (deliver) {
       const int d = done_idx;
       Mshr& s = mshr_[d];
       del_tag_ = tags_[static_cast<size_t>(d) * targets_ + s.out];
@@ -288,6 +281,7 @@ class Cache {
     }
     held_ = send_valid && !mem_taken;
     held_idx_ = send_idx;
+    return taken;
   }
 
   // The way of the key's set that holds its line, or -1. Line set * ways + w
@@ -319,6 +313,7 @@ class Cache {
   }
   int SendIdx() const { return held_ ? held_idx_ : __builtin_ctzll(unsent_); }
 
+  uint64_t base_, line_bytes_;
   uint64_t set_mask_;
   int ways_, way_bits_;
   int beats_, targets_, mshrs_;
@@ -340,7 +335,6 @@ class Cache {
   bool hit_valid_ = false, del_valid_ = false, held_ = false;
   uint64_t hit_tag_ = 0, del_tag_ = 0;
   int held_idx_ = 0;
-  Comb c_;
   Events ev_;
 };
 
@@ -488,12 +482,15 @@ class FastCore {
            int index, bool lazy_memory)
       : paths_(paths), ref_(ref), mem_(mem), queue_(queue), index_(index), lazy_(lazy_memory),
         timeout_(spec.timeout), threads_(spec.config[kThreads]),
+        // Node and list lines are named by address / 32, triangle lines by
+        // triangle id / P.
         node_(spec.config[kNodeCacheLines], spec.config[kCacheWays], 2, spec.config[kCacheMshrs],
-              spec.config[kCacheTargets], true),
+              spec.config[kCacheTargets], true, 0, 32),
         list_(spec.config[kListCacheLines], spec.config[kCacheWays], 2, spec.config[kCacheMshrs],
-              spec.config[kCacheTargets], false),
+              spec.config[kCacheTargets], false, 0, 32),
         tri_(spec.config[kTriCacheLines], spec.config[kCacheWays], spec.image->layout().TriangleLineBeats(),
-             spec.config[kCacheMshrs], spec.config[kCacheTargets], false),
+             spec.config[kCacheMshrs], spec.config[kCacheTargets], false, spec.image->header().tri_offset,
+             spec.image->layout().TriangleLineBytes()),
         th_(threads_), fetch_arb_(threads_), fetch2_arb_(threads_), exit_arb_(threads_), out_arb_(threads_),
         moves_(static_cast<size_t>(threads_)), since_(static_cast<size_t>(threads_), 0),
         clip_pipe_(threads_, true), trav_pipe_(threads_, true), jobs_(threads_, true),
@@ -520,7 +517,6 @@ class FastCore {
     // named by id / P.
     const img::ImageLayout layout = spec.image->layout();
     tri_per_line_ = static_cast<uint32_t>(layout.TrianglesPerLine());
-    tri_line_bytes_ = layout.TriangleLineBytes();
   }
 
   // The RTL harness's Done(), checked before each cycle: no ray pending or in
@@ -621,7 +617,6 @@ class FastCore {
   const uint32_t* lists_;
   const img::Header& header_;
   uint32_t tri_per_line_ = 1;
-  uint64_t tri_line_bytes_ = 0;
   // LEAF -> EXIT once the tests issued and returned (registered counts) are
   // both zero. Only a test issued or retired can make them so, at most one of
   // each a cycle: the threads found at one clock edge move in the next cycle.
@@ -696,6 +691,19 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
     isect_pipe_.pop();
   }
 
+  // The memory arbiter, from the registered state: one beat a cycle, round
+  // robin over the caches (the first requester after the last grant). The
+  // caches' steps below then take it at their clock edges.
+  const bool mem_wait = node_.MemWait() || list_.MemWait() || tri_.MemWait();
+  Cache* caches[3] = {&node_, &list_, &tri_};
+  const unsigned mreq = node_.mem_valid() | list_.mem_valid() << 1 | tri_.mem_valid() << 2;
+  const int g = kMemPick[mem_last_][mreq];
+  if (g >= 0) {
+    mem_last_ = g;
+    mem_.Request(caches[g]->mem_addr(), static_cast<uint16_t>(g << 8 | caches[g]->mem_id()), cycle);
+    ++result_.mem_requests;
+  }
+
   // Node fetches: two arbiters, the second offered to the miss-only port.
   ThreadSet& fetching = in_set_[kFetch];
   const int f1 = in_state_[kFetch] > 0 ? fetch_arb_.Pick(fetching) : -1;
@@ -707,23 +715,21 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
     fetching.Set(f1);
     n1.valid = true;
     n1.key = th_[f1].next->key;
-    n1.addr = n1.key << 5;
     n1.tag = static_cast<uint64_t>(f1);
   }
   if (f2 >= 0) {
     n2.valid = true;
     n2.key = th_[f2].next->key;
-    n2.addr = n2.key << 5;
     n2.tag = static_cast<uint64_t>(f2);
   }
   // The node response (registered) fires: the units are always ready.
   const bool node_fire = node_.resp_valid();
   const int node_tag = node_fire ? static_cast<int>(node_.resp_tag()) : -1;
-  node_.Eval(n1, n2, true);
+  const unsigned node_taken = node_.Step(n1, n2, true, g == 0, resp_cache == 0 ? resp_id : -1);
   fetch_arb_.Ack(f1);
   fetch2_arb_.Ack(f2);
-  if (node_.accept1()) Move(f1, kWaitNode);
-  if (node_.accept2()) Move(f2, kWaitNode);
+  if (node_taken & 1u) Move(f1, kWaitNode);
+  if (node_taken & 2u) Move(f2, kWaitNode);
   Job new_job{};  // a leaf's job for the list unit's FIFO
   bool has_new_job = false;
   bool trav_in = false;
@@ -754,38 +760,28 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   Cache::Req lr;
   if (list_req_valid_) {
     const uint64_t addr = header_.list_offset + uint64_t{list_job_.first + list_k_} * img::kListEntryBytes;
-    lr = {true, addr >> 5, (addr >> 5) << 5, uint64_t(list_job_.thread) << 32 | (list_job_.first + list_k_)};
+    lr = {true, addr >> 5, uint64_t(list_job_.thread) << 32 | (list_job_.first + list_k_)};
   }
   Cache::Req trq;
   if (list_.resp_valid()) {
     const uint64_t tag = list_.resp_tag();
     const uint32_t id = lists_[tag & 0xFFFFFFFFu];
-    const uint32_t line = id / tri_per_line_;
-    trq = {true, line, header_.tri_offset + uint64_t{line} * tri_line_bytes_, (tag >> 32) << 32 | id};
+    // The triangle cache's tag: the thread (the RTL's tag also has the id,
+    // which only the datapath uses).
+    trq = {true, id / tri_per_line_, tag >> 32};
   }
   const bool tri_fire = tri_.resp_valid();
-  const int tri_thread = tri_fire ? static_cast<int>(tri_.resp_tag() >> 32) : -1;
-  tri_.Eval(trq, Cache::Req{}, true);
-  list_.Eval(lr, Cache::Req{}, tri_.accept1());
-  const bool list_fire = list_req_valid_ && list_.accept1();
+  const int tri_thread = tri_fire ? static_cast<int>(tri_.resp_tag()) : -1;
+  const bool tri_taken = tri_.Step(trq, Cache::Req{}, true, g == 2, resp_cache == 2 ? resp_id : -1) & 1u;
+  const bool list_taken = list_.Step(lr, Cache::Req{}, tri_taken, g == 1, resp_cache == 1 ? resp_id : -1) & 1u;
+  const bool list_fire = list_req_valid_ && list_taken;
   // rt_perf_events' list_busy: an entry requested or one answered (its
   // triangle taken by the triangle cache).
-  const bool entry_fire = trq.valid && tri_.accept1();
+  const bool entry_fire = trq.valid && tri_taken;
   if (list_fire || entry_fire) ++perf[kBitListBusy];
   if (tri_fire) {
     isect_pipe_.push({cycle + lat_isect_, tri_thread});
     ++perf[kBitIsectBusy];
-  }
-
-  // The memory arbiter: one beat a cycle, round robin over the caches (the
-  // first requester after the last grant).
-  Cache* caches[3] = {&node_, &list_, &tri_};
-  const unsigned mreq = node_.mem_valid() | list_.mem_valid() << 1 | tri_.mem_valid() << 2;
-  const int g = kMemPick[mem_last_][mreq];
-  if (g >= 0) {
-    mem_last_ = g;
-    mem_.Request(caches[g]->mem_addr(), static_cast<uint16_t>(g << 8 | caches[g]->mem_id()), cycle);
-    ++result_.mem_requests;
   }
 
   // Leaf exits and records out.
@@ -806,7 +802,7 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   // (The units and the harness are always ready: no backpressure.)
   const bool any_progress = trav_in || list_fire || entry_fire || tri_fire || ex >= 0 || o >= 0 || alloc >= 0 ||
                             clip_out || trav_out || retired >= 0;
-  if (Busy() && !any_progress && (node_.MemWait() || list_.MemWait() || tri_.MemWait())) ++perf[kBitStallMem];
+  if (Busy() && !any_progress && mem_wait) ++perf[kBitStallMem];
   if (in_state_[kExit] > (ex >= 0 ? 1u : 0u)) ++perf[kBitStallStack];
 
   // LEAF: the counters of tests issued and returned.
@@ -816,10 +812,7 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   }
   if (retired >= 0) --th_[retired].outstanding;
 
-  // The clock edge.
-  node_.Commit(g == 0, resp_cache == 0 ? resp_id : -1);
-  list_.Commit(g == 1, resp_cache == 1 ? resp_id : -1);
-  tri_.Commit(g == 2, resp_cache == 2 ? resp_id : -1);
+  // The clock edge (the caches' edges were in their steps).
   // rt_list_unit: the request register and the job FIFO.
   const bool queued = !jobs_.empty();
   if (list_fire) {
