@@ -45,7 +45,7 @@ CoreHarness::CoreHarness(Vrt_core& top, const ImageView& image, const std::vecto
                          const std::vector<Hit>& reference, MemoryPort& memory, const HarnessOptions& options,
                          RayQueue* queue, int core)
     : top_(top), image_(image), rays_(rays), reference_(reference), memory_(memory), options_(options),
-      own_queue_(queue ? nullptr : std::make_unique<RayQueue>(rays.size(), 1, rays.size())),
+      own_queue_(queue ? nullptr : std::make_unique<RayQueue>(rays.size(), 1, rays.size(), options.order)),
       queue_(queue ? queue : own_queue_.get()), core_(core) {
   result_.hits.assign(rays.size(), Hit{});
   result_.overflow.assign(rays.size(), 0);

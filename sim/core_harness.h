@@ -45,6 +45,9 @@ struct HarnessOptions {
   uint64_t timeout = 1000000;   // cycles without a hit record
   int64_t trace_ray = -1;       // waveform only while this ray is in flight
   bool progress = false;
+  // The issue order (position -> ray id; sim/ray_queue.h), or null/empty:
+  // the list's order.
+  const std::vector<uint32_t>* order = nullptr;
 };
 
 class CoreHarness {

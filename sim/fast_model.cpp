@@ -904,7 +904,7 @@ RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
   // The simulation's own time, as the RTL harness counts it (without the
   // reference traversal, which both pay).
   const auto start = std::chrono::steady_clock::now();
-  RayQueue queue(spec.rays->size(), 1, spec.rays->size());
+  RayQueue queue(spec.rays->size(), 1, spec.rays->size(), spec.order);
   FastCore<MemoryModel> core(spec, paths, ref, memory, queue, 0, LazyMemory(spec.memory));
   Progress progress(spec.progress, queue);
   uint64_t cycle = 0;
@@ -945,7 +945,7 @@ SystemOutcome RunFastCores(const FastSpec& spec, int cores, const L2Config& l2_c
   SharedL2 l2(l2_config, memory, no_data, cores);
   const bool lazy = LazyMemory(spec.memory);
   const auto start = std::chrono::steady_clock::now();
-  RayQueue queue(spec.rays->size(), cores, chunk);
+  RayQueue queue(spec.rays->size(), cores, chunk, spec.order);
   std::vector<L2Port> ports;
   ports.reserve(static_cast<size_t>(cores));
   std::vector<std::unique_ptr<FastCore<L2Port>>> core;

@@ -31,6 +31,7 @@ namespace kdrt::sim {
 struct FastSpec {
   const ImageView* image = nullptr;  // the image the core reads (of ImageFormat())
   const std::vector<Ray>* rays = nullptr;
+  const std::vector<uint32_t>* order = nullptr;  // issue order (sim/ray_queue.h), or null: the list's
   Query query = Query::kClosest;
   CoreConfig config;
   MemoryConfig memory;

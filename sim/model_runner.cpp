@@ -1,6 +1,7 @@
 #include "sim/model_runner.h"
 
 #include "sim/fast_model.h"
+#include "sim/ray_queue.h"
 #include "sim/sim_report.h"
 
 #include <fcntl.h>
@@ -225,6 +226,8 @@ ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, co
   spec.memory.bytes_per_cycle = run.mem_bw;
   spec.timeout = run.timeout;
   spec.progress = run.progress;
+  const std::vector<uint32_t> order = IssueOrder(run.ray_order, run.frame_width, rays.size());
+  spec.order = &order;
   ReportInputs ri;
   ri.loop = "fast";
   ri.config = config;

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 
+#include "common/error.h"
+
 namespace kdrt::sim {
 
-RayQueue::RayQueue(size_t count, int cores, size_t chunk)
-    : count_(count), chunk_(chunk > 0 ? chunk : 1), cur_(cores, 0), end_(cores, 0) {}
+RayQueue::RayQueue(size_t count, int cores, size_t chunk, const std::vector<uint32_t>* order)
+    : count_(count), chunk_(chunk > 0 ? chunk : 1), cur_(cores, 0), end_(cores, 0),
+      order_(order && !order->empty() ? order : nullptr) {}
 
 bool RayQueue::Take(int core, size_t* id) {
   if (cur_[core] >= end_[core]) {
@@ -14,8 +17,42 @@ bool RayQueue::Take(int core, size_t* id) {
     end_[core] = std::min(count_, next_ + chunk_);
     next_ = end_[core];
   }
-  *id = cur_[core]++;
+  const size_t pos = cur_[core]++;
+  *id = order_ ? (*order_)[pos] : pos;
   return true;
+}
+
+namespace {
+
+// x's bits spread to the even bit positions.
+uint64_t SpreadBits(uint32_t x) {
+  uint64_t v = x;
+  v = (v | v << 16) & 0x0000FFFF0000FFFFull;
+  v = (v | v << 8) & 0x00FF00FF00FF00FFull;
+  v = (v | v << 4) & 0x0F0F0F0F0F0F0F0Full;
+  v = (v | v << 2) & 0x3333333333333333ull;
+  v = (v | v << 1) & 0x5555555555555555ull;
+  return v;
+}
+
+}  // namespace
+
+std::vector<uint32_t> IssueOrder(const std::string& name, uint32_t width, size_t count) {
+  if (name == "linear") return {};
+  if (name != "morton") throw InputError("--ray-order " + name + ": expected linear or morton");
+  if (width == 0 || count % width != 0) {
+    throw InputError("--ray-order morton: the rays must be whole rows of a frame (" + std::to_string(count) +
+                     " rays, width " + std::to_string(width) + ")");
+  }
+  std::vector<std::pair<uint64_t, uint32_t>> keyed(count);
+  for (size_t i = 0; i < count; ++i) {
+    const auto x = static_cast<uint32_t>(i % width), y = static_cast<uint32_t>(i / width);
+    keyed[i] = {SpreadBits(x) | SpreadBits(y) << 1, static_cast<uint32_t>(i)};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<uint32_t> order(count);
+  for (size_t i = 0; i < count; ++i) order[i] = keyed[i].second;
+  return order;
 }
 
 }  // namespace kdrt::sim

@@ -5,16 +5,19 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 namespace kdrt::sim {
 
-// Hands out ray ids (indices in the ray list) in order, a chunk of
-// consecutive rays at a time: a core takes its chunk's rays one by one and
-// then the next free chunk.
+// Hands out ray ids (indices in the ray list) in issue order, a chunk of
+// consecutive positions at a time: a core takes its chunk's rays one by one
+// and then the next free chunk. The issue order is the list's, or `order`
+// (position -> ray id, a permutation of the ids; it must outlive the queue).
 class RayQueue {
  public:
-  RayQueue(size_t count, int cores, size_t chunk);
+  RayQueue(size_t count, int cores, size_t chunk, const std::vector<uint32_t>* order = nullptr);
   bool Take(int core, size_t* id);
   // Nothing is left for `core` (its chunk is used up and no chunk is free).
   bool Exhausted(int core) const { return cur_[core] >= end_[core] && next_ >= count_; }
@@ -25,6 +28,16 @@ class RayQueue {
  private:
   size_t count_, chunk_, next_ = 0, returned_ = 0;
   std::vector<size_t> cur_, end_;
+  const std::vector<uint32_t>* order_;
 };
+
+// The issue orders of `kdrt sim --ray-order` (docs/simulator.md, "Ray
+// order"): "linear" (the ray list's order: a camera's rays row by row) gives
+// an empty vector; "morton" takes the rays as a row-major frame `width`
+// pixels wide and issues them along the Z-order curve over (x, y), so the
+// rays in flight together are neighbours in 2D (tiles of 2x2, 4x4, ...).
+// Throws InputError for another name, a width of 0 or a count that is not
+// whole rows.
+std::vector<uint32_t> IssueOrder(const std::string& name, uint32_t width, size_t count);
 
 }  // namespace kdrt::sim

@@ -30,6 +30,15 @@ void AddRunOptions(CLI::App& cmd, RunOptions& o) {
   cmd.add_option("--l2-latency", o.l2_latency, "With --cores: L2 hit latency in cycles")->capture_default_str();
   cmd.add_option("--ray-chunk", o.ray_chunk, "With --cores: consecutive rays a core takes from the queue at once")
       ->capture_default_str();
+  cmd.add_option("--ray-order", o.ray_order,
+                 "Order the camera's rays enter the core: linear (row by row) or morton (along the Z-order "
+                 "curve over the image, so the rays in flight are neighbours in 2D); a ray file is issued in "
+                 "its own order")
+      ->check(CLI::IsMember({"linear", "morton"}))
+      ->capture_default_str();
+  // Hidden: the frame's width for --ray-order morton (the front end passes
+  // its camera's to the model).
+  cmd.add_option("--frame-width", o.frame_width, "Width of the frame the rays are in, row by row")->group("");
   // Hidden: lets the tests see the co-simulation checker fire.
   cmd.add_option("--corrupt-reference", o.corrupt_reference,
                  "Test hook: change the expected record of ray K so the checker must report it")
@@ -77,6 +86,9 @@ std::vector<std::string> RunOptionArgs(const RunOptions& o, const std::string& t
     a.insert(a.end(), {"--cores", std::to_string(o.cores), "--l2-kb", std::to_string(o.l2_kb), "--l2-ways",
                        std::to_string(o.l2_ways), "--l2-latency", std::to_string(o.l2_latency), "--ray-chunk",
                        std::to_string(o.ray_chunk)});
+  }
+  if (o.ray_order != "linear") {
+    a.insert(a.end(), {"--ray-order", o.ray_order, "--frame-width", std::to_string(o.frame_width)});
   }
   if (o.corrupt_reference >= 0) a.insert(a.end(), {"--corrupt-reference", std::to_string(o.corrupt_reference)});
   return a;

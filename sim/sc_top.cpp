@@ -135,7 +135,7 @@ SystemOutcome RunSystemCCores(const RunSpec& spec, int cores, const L2Config& l2
   sc_core::sc_clock clock("clock", 10, sc_core::SC_NS);
   ScMemory memory("memory", spec.memory, image);
   ScL2 l2("l2", l2_config, memory.model(), image, cores);
-  RayQueue queue(spec.rays->size(), cores, chunk);
+  RayQueue queue(spec.rays->size(), cores, chunk, spec.options.order);
   int running = cores;
   std::vector<std::unique_ptr<ScCore>> core;
   for (int k = 0; k < cores; ++k) {

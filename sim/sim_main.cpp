@@ -113,6 +113,8 @@ int Run(const ModelArgs& args) {
   spec.options.timeout = args.run.timeout;
   spec.options.trace_ray = args.run.trace_ray;
   spec.options.progress = args.run.progress;
+  const std::vector<uint32_t> order = IssueOrder(args.run.ray_order, args.run.frame_width, rays.size());
+  spec.options.order = &order;
   spec.trace_path = args.run.trace;
 
   ReportInputs ri;

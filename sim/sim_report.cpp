@@ -226,8 +226,10 @@ void PrintReport(const nlohmann::json& j, std::FILE* out) {
   std::fprintf(out, "memory         %llu B, latency %llu cycles, %.3g B/cycle%s\n", u(mem["size_bytes"]),
                u(mem["latency"]), bw, bw_run < bw ? " (runs at 16: one beat a cycle)" : "");
   const bool any_hit = j.value("query", "closest") == "any";
-  std::fprintf(out, "rays           %llu (%dx%d%s), %llu hits, %llu stack overflows\n", u(j["rays"]),
-               j["width"].get<int>(), j["height"].get<int>(), any_hit ? ", any-hit queries" : "", u(j["hits"]),
+  const std::string order = j.value("ray_order", "linear");
+  std::fprintf(out, "rays           %llu (%dx%d%s%s), %llu hits, %llu stack overflows\n", u(j["rays"]),
+               j["width"].get<int>(), j["height"].get<int>(), any_hit ? ", any-hit queries" : "",
+               order == "linear" ? "" : (", issued in " + order + " order").c_str(), u(j["hits"]),
                u(j["overflows"]));
   std::fprintf(out, "cycles         %llu\n", u(j["cycles"]));
   std::fprintf(out, "rays per cycle %.4f\n", d(j["rays_per_cycle"]));

@@ -107,6 +107,13 @@ int RunSim(SimArgs args) {
   }
   const RaySet ray_set = MakeRays(p.scene, args.rays, args.camera, args.res);
   CheckShadingArgs(args.shading, ray_set);
+  if (args.run.ray_order != "linear") {
+    if (!args.rays.empty()) {
+      throw InputError("--ray-order " + args.run.ray_order +
+                       " orders the camera's frame; a ray file (--rays) is issued in its own order");
+    }
+    args.run.frame_width = static_cast<uint32_t>(ray_set.width);
+  }
   if (args.run.trace_ray >= static_cast<int64_t>(ray_set.rays.size())) {
     throw InputError("--trace-ray " + std::to_string(args.run.trace_ray) + ": there are only " +
                      std::to_string(ray_set.rays.size()) + " rays");
@@ -157,6 +164,7 @@ int RunSim(SimArgs args) {
                  p.tree.stats.max_depth},
                 &report);
   report["build"] = BuildOptionsJson(args.scene.build, p.tree.stats);
+  report["ray_order"] = args.run.ray_order;
   report["precision"] = check.requirement.Json();
   report["warnings"] = check.warnings;
   for (const std::string& w : run_warnings) report["warnings"].push_back(w);
@@ -166,6 +174,7 @@ int RunSim(SimArgs args) {
   ShadedFrame frame;
   if (args.shading.On()) {
     sim::RunOptions pass_run = args.run;
+    pass_run.ray_order = "linear";  // a pass's rays are a list of the frame's hits, not a frame
     pass_run.trace.clear();
     pass_run.trace_ray = -1;
     const PassTracer trace = [&](const RayPass& pass, nlohmann::json* stats) {

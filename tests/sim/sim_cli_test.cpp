@@ -406,6 +406,48 @@ TEST_F(SimCli, AssociativeCaches) {
   EXPECT_FALSE(fs::exists(Path("b.png")));
 }
 
+// --ray-order morton issues the camera's rays along the Z-order curve
+// (sim/ray_queue.h): the RTL still returns the reference's record for every
+// ray (the hit buffer is the linear run's, pixel for pixel), the fast model
+// follows it cycle for cycle on one core and on several, the report says
+// which order ran, and a ray file, which has no frame, is refused.
+TEST_F(SimCli, MortonRayOrder) {
+  const std::string common = "sim gen:tree:2000 --res 24x20 -q";
+  const RunResult lin = RunKdrt(common + " --model fast -o " + Path("l.png") + " --hits " + Path("l.exr") +
+                                " --json " + Path("l.json"));
+  ASSERT_EQ(lin.exit_code, 0) << lin.output;
+  const RunResult r = RunKdrt(common + " --ray-order morton --model both -o " + Path("m.png") + " --hits " +
+                              Path("m.exr") + " --json " + Path("m.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ExpectSameHitBuffers(Path("l.exr"), Path("m.exr"));
+  const nlohmann::json j = ReadJson(Path("m.json"));
+  const nlohmann::json lj = ReadJson(Path("l.json"));
+  EXPECT_EQ(j["ray_order"], "morton");
+  EXPECT_EQ(lj["ray_order"], "linear");
+  ExpectFastEqualsRtl(j);
+  EXPECT_EQ(j["perf_counts"]["ray_out"].get<uint64_t>(), 24u * 20u);
+  // Same rays, same tree: the same work, in another order.
+  EXPECT_EQ(j["reference_per_ray"], lj["reference_per_ray"]);
+  EXPECT_NE(j["cycles"], lj["cycles"]);
+  const RunResult text = RunKdrt("sim gen:tree:2000 --res 24x20 --ray-order morton --model fast -o " + Path("t.png"));
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("(24x20, issued in morton order)"), std::string::npos) << text.output;
+  // Several cores take chunks of the Z-order (tiles).
+  const RunResult c = RunKdrt(common + " --ray-order morton --cores 2 --ray-chunk 16 --model both -o " +
+                              Path("c.png") + " --json " + Path("c.json"));
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const nlohmann::json cj = ReadJson(Path("c.json"));
+  ExpectFastEqualsRtl(cj);
+  EXPECT_EQ(cj["fast"]["report"]["per_core"], cj["per_core"]);
+
+  const std::string rays = Path("x.rays");
+  WriteRaysFile(rays, {Ray{{0, 0, -5}, {0, 0, 1}, 0, 100}});
+  const RunResult bad = RunKdrt("sim gen:tree:2000 --rays " + rays + " --ray-order morton -o " + Path("b.png"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.output.find("a ray file (--rays) is issued in its own order"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(Path("b.png")));
+}
+
 // Rays lying in the kd-tree's split planes (a NaN split distance: both
 // children, and no early stop while the far child waits on the stack,
 // InPlane in trace/traversal.h and rtl/rt_leaf_exit.sv): the RTL returns the

@@ -1,0 +1,82 @@
+// The ray queue (sim/ray_queue.h): the ids it hands out and the issue orders
+// of `kdrt sim --ray-order`.
+#include "sim/ray_queue.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <set>
+
+#include "common/error.h"
+
+namespace kdrt::sim {
+namespace {
+
+TEST(IssueOrder, LinearIsTheListsOrder) { EXPECT_TRUE(IssueOrder("linear", 0, 100).empty()); }
+
+// Z-order over a row-major frame: every id once, and each aligned 2^k x 2^k
+// block of the frame is a run of 4^k consecutive positions.
+TEST(IssueOrder, MortonVisitsAlignedBlocksInOneRun) {
+  const uint32_t width = 16, height = 8;
+  const std::vector<uint32_t> order = IssueOrder("morton", width, width * height);
+  ASSERT_EQ(order.size(), width * height);
+  std::vector<uint32_t> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<uint32_t> ids(width * height);
+  std::iota(ids.begin(), ids.end(), 0u);
+  EXPECT_EQ(sorted, ids);
+  EXPECT_EQ(order[0], 0u);
+  EXPECT_EQ(order[1], 1u);       // (1, 0)
+  EXPECT_EQ(order[2], width);    // (0, 1)
+  EXPECT_EQ(order[3], width + 1);  // (1, 1)
+  for (uint32_t block : {2u, 4u, 8u}) {
+    for (size_t start = 0; start < order.size(); start += block * block) {
+      std::set<uint32_t> xs, ys;
+      for (size_t k = start; k < start + block * block; ++k) {
+        xs.insert(order[k] % width / block);
+        ys.insert(order[k] / width / block);
+      }
+      EXPECT_EQ(xs.size(), 1u) << "block " << block << " at " << start;
+      EXPECT_EQ(ys.size(), 1u) << "block " << block << " at " << start;
+    }
+  }
+}
+
+// A frame whose sides are not powers of two still gets every id once.
+TEST(IssueOrder, MortonOnAnyFrame) {
+  const std::vector<uint32_t> order = IssueOrder("morton", 24, 24 * 20);
+  std::vector<uint32_t> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (uint32_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], i);
+}
+
+TEST(IssueOrder, RefusesWhatIsNotAFrame) {
+  EXPECT_THROW(IssueOrder("morton", 0, 16), InputError);
+  EXPECT_THROW(IssueOrder("morton", 5, 16), InputError);
+  EXPECT_THROW(IssueOrder("spiral", 4, 16), InputError);
+}
+
+// The queue hands out the order's ids, a chunk of positions per core.
+TEST(RayQueue, HandsOutTheIssueOrderInChunks) {
+  const std::vector<uint32_t> order = {3, 1, 0, 2, 5, 4};
+  RayQueue q(order.size(), 2, 2, &order);
+  size_t id = 0;
+  ASSERT_TRUE(q.Take(0, &id));
+  EXPECT_EQ(id, 3u);
+  ASSERT_TRUE(q.Take(1, &id));
+  EXPECT_EQ(id, 0u);  // core 1's chunk is positions 2 and 3
+  ASSERT_TRUE(q.Take(0, &id));
+  EXPECT_EQ(id, 1u);
+  ASSERT_TRUE(q.Take(0, &id));
+  EXPECT_EQ(id, 5u);  // core 0's next chunk: positions 4 and 5
+  ASSERT_TRUE(q.Take(1, &id));
+  EXPECT_EQ(id, 2u);
+  EXPECT_TRUE(q.Exhausted(1));
+  ASSERT_TRUE(q.Take(0, &id));
+  EXPECT_EQ(id, 4u);
+  EXPECT_FALSE(q.Take(0, &id));
+}
+
+}  // namespace
+}  // namespace kdrt::sim
