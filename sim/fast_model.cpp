@@ -289,6 +289,12 @@ class Cache {
   int FindWay(uint64_t key) const {
     if (ways_ == 1) return lines_[key & set_mask_] == key ? 0 : -1;
     const uint64_t* set = &lines_[(key & set_mask_) * ways_];
+    if (ways_ == 4) {
+      // The default, without a branch per way (a key is in one way at most).
+      const unsigned m = static_cast<unsigned>(set[0] == key) | static_cast<unsigned>(set[1] == key) << 1 |
+                         static_cast<unsigned>(set[2] == key) << 2 | static_cast<unsigned>(set[3] == key) << 3;
+      return m ? __builtin_ctz(m) : -1;
+    }
     for (int w = 0; w < ways_; ++w) {
       if (set[w] == key) return w;
     }
