@@ -40,6 +40,7 @@ PARAMS = {
     "trav_format": "--trav-format",
     "image_format": "--image-format",
     "min_split_gain": "--min-split-gain",
+    "ray_order": "--ray-order",
 }
 SPEC_KEYS = {"scenes", "formats", "res", "params", "model", "shade", "allow_overflow"}
 # What each point reports, from `kdrt sim --json`.

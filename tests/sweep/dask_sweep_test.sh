@@ -99,6 +99,28 @@ for r in rows.values():
 assert nodes[0.1] * 3 < nodes[0.0] * 2, nodes
 PY
 
+# The order the camera's rays enter the core (--ray-order): the same rays,
+# so the same hits and reference work, and in Z-order tree's cache lines
+# serve more rays in flight (fewer bytes per ray).
+cat > "$work/order.yaml" << 'SPEC'
+scenes: [gen:tree:2000]
+res: 32x32
+model: fast
+params:
+  ray_order: [linear, morton]
+SPEC
+local_sweep order
+/usr/bin/python3 - "$work/order" << 'PY' || fail "ray_order column"
+import csv, json, sys
+rows = {r["ray_order"]: r for r in csv.DictReader(open(sys.argv[1] + "/sweep.csv"))}
+assert sorted(rows) == ["linear", "morton"], rows
+points = {k: json.load(open(sys.argv[1] + "/points/" + r["id"] + ".json"))["report"] for k, r in rows.items()}
+assert points["morton"]["ray_order"] == "morton" and points["linear"]["ray_order"] == "linear"
+assert points["morton"]["hits"] == points["linear"]["hits"]
+assert points["morton"]["reference_per_ray"] == points["linear"]["reference_per_ray"]
+assert float(rows["morton"]["bytes_per_ray"]) < float(rows["linear"]["bytes_per_ray"]), rows
+PY
+
 # A Dask cluster on loopback.
 port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 dask-scheduler --host 127.0.0.1 --port "$port" --no-dashboard > "$work/scheduler.log" 2>&1 &
