@@ -2,9 +2,14 @@
 //
 // A leaf job (thread tag, first list entry, entry count > 0) waits in a FIFO
 // of Jobs entries; the walker takes the oldest job when it is idle and then
-// issues one list-cache request per cycle, one per entry, with the entry's
-// byte address (list_base_i + ListEntryBytes * entry) and the job's tag,
-// until all of the job's entries are requested. Both streams are valid/ready
+// issues one list-cache request per cycle with the byte address of the next
+// entry (list_base_i + ListEntryBytes * entry), the job's tag and a count,
+// until all of the job's entries are requested. With ListStream 0 a request
+// is one entry (count 1); with ListStream 1 it is every entry of the job
+// left in the entry's list line of LineBytes (1 .. LineBytes /
+// ListEntryBytes), which rt_mem_system then hands on one a cycle (list_base_i
+// must then be a multiple of ListEntryBytes, as the image's list section
+// is, so that no entry straddles two lines). Both streams are valid/ready
 // with picorv32's rule.
 `default_nettype none
 
@@ -12,7 +17,10 @@ module rt_list_unit #(
   parameter int unsigned TagWidth = 5,
   parameter int unsigned Jobs = 32,
   parameter int unsigned CountWidth = 25,
-  parameter int unsigned AddrWidth = 28
+  parameter int unsigned AddrWidth = 28,
+  parameter int unsigned ListStream = 0,
+  parameter int unsigned LineBytes = 32,
+  localparam int unsigned ReqCountW = $clog2(LineBytes / kdrt_pkg::ListEntryBytes + 1)
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,
@@ -27,10 +35,12 @@ module rt_list_unit #(
   output logic                  req_valid_o,
   input  logic                  req_ready_i,
   output logic [TagWidth-1:0]   req_tag_o,
-  output logic [AddrWidth-1:0]  req_addr_o
+  output logic [AddrWidth-1:0]  req_addr_o,
+  output logic [ReqCountW-1:0]  req_count_o   // entries from req_addr_o on (1 without ListStream)
 );
 
   localparam int unsigned EntryShift = $clog2(kdrt_pkg::ListEntryBytes);
+  localparam int unsigned LineOffW = $clog2(LineBytes);
 
   // ------------------------------------------------------------ job queue
   logic                  queued_valid, queued_pop;
@@ -53,12 +63,22 @@ module rt_list_unit #(
   logic                  req_fire;
   assign req_fire = req_valid_o && req_ready_i;
 
+  // The entries this request covers: one, or (ListStream) those left of the
+  // job in the entry's line.
+  if (ListStream != 0) begin : g_stream
+    logic [LineOffW-EntryShift:0] in_line;  // entries from the address to the line's end
+    assign in_line = (LineOffW - EntryShift + 1)'((LineBytes - 32'(req_addr_o[LineOffW-1:0])) >> EntryShift);
+    assign req_count_o = left_q < CountWidth'(in_line) ? ReqCountW'(left_q) : ReqCountW'(in_line);
+  end else begin : g_single
+    assign req_count_o = ReqCountW'(1);
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       req_valid_o <= 1'b0;
     end else if (queued_pop) begin
       req_valid_o <= 1'b1;
-    end else if (req_fire && left_q == CountWidth'(1)) begin
+    end else if (req_fire && left_q == CountWidth'(req_count_o)) begin
       req_valid_o <= 1'b0;
     end
   end
@@ -69,8 +89,8 @@ module rt_list_unit #(
       req_addr_o <= list_base_i + (AddrWidth'(queued_first) << EntryShift);
       left_q <= queued_count;
     end else if (req_fire) begin
-      req_addr_o <= req_addr_o + AddrWidth'(kdrt_pkg::ListEntryBytes);
-      left_q <= left_q - 1'b1;
+      req_addr_o <= req_addr_o + (AddrWidth'(req_count_o) << EntryShift);
+      left_q <= left_q - CountWidth'(req_count_o);
     end
   end
 
@@ -84,8 +104,8 @@ module rt_list_unit #(
     .clk_i, .rst_ni, .valid_i(job_valid_i), .ready_i(job_ready_o),
     .payload_i({job_tag_i, job_first_i, job_count_i})
   );
-  rt_stream_check #(.Width(TagWidth + AddrWidth), .Name("rt_list_unit request")) u_req_check (
-    .clk_i, .rst_ni, .valid_i(req_valid_o), .ready_i(req_ready_i), .payload_i({req_tag_o, req_addr_o})
+  rt_stream_check #(.Width(TagWidth + AddrWidth + ReqCountW), .Name("rt_list_unit request")) u_req_check (
+    .clk_i, .rst_ni, .valid_i(req_valid_o), .ready_i(req_ready_i), .payload_i({req_tag_o, req_addr_o, req_count_o})
   );
 
 endmodule

@@ -8,8 +8,12 @@
 //               triangle id -> triangle cache (lines of TriPerLine records,
 //               named by id / TriPerLine) -> the triangle's record
 //
-// Responses come back out of order, each with its request's tag (the list
-// port's tag comes back on the triangle response, with the id). Streams are
+// With ListStream 1 a list request names list_req_count_i entries from its
+// address on, all in one list line: the list cache's response (the whole
+// line) goes into a line register that hands the triangle cache one entry a
+// cycle, and the cache's next response waits until the register gives its
+// last entry. Responses come back out of order, each with its request's tag
+// (the list port's tag comes back on the triangle response, with the id). Streams are
 // valid/ready; all but the node request follow picorv32's rule (checked): a
 // node request may change or drop while not ready (the cache decides each
 // cycle). The memory tag is {cache (node 0, list 1, triangle 2), miss
@@ -35,7 +39,10 @@ module rt_mem_system #(
   // Triangle records per line, 1 or 2 (kdrt_pkg::img_tris_per_line; 2 for
   // fp16 and bf16): record id % 2 of line id / 2 is the line's lower or upper half.
   parameter int unsigned TriPerLine = 1,
-  localparam int unsigned TriBits = 128 * TriLineBeats / TriPerLine
+  // 1: a list request names the entries of one line (list_req_count_i).
+  parameter int unsigned ListStream = 0,
+  localparam int unsigned TriBits = 128 * TriLineBeats / TriPerLine,
+  localparam int unsigned ListCountW = $clog2(16 * ListLineBeats / kdrt_pkg::ListEntryBytes + 1)
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -59,6 +66,7 @@ module rt_mem_system #(
   output logic                         list_req_ready_o,
   input  logic [TagWidth-1:0]          list_req_tag_i,
   input  logic [AddrWidth-1:0]         list_req_addr_i,
+  input  logic [ListCountW-1:0]        list_req_count_i,  // entries from the address on (ListStream)
   output logic                         tri_resp_valid_o,
   input  logic                         tri_resp_ready_i,
   output logic [TagWidth-1:0]          tri_resp_tag_o,
@@ -113,32 +121,83 @@ module rt_mem_system #(
     .wait_inflight_o(wait_inflight_o[0]), .wait_mshr_o(wait_mshr_o[0]), .filling_o(filling[0])
   );
 
-  // The list cache's tag carries the entry's offset in its line.
-  logic                         list_resp_valid, tri_req_ready;
+  // The list cache's tag carries the entry's offset in its line and the
+  // request's count.
+  logic                         list_resp_valid, list_resp_ready, tri_req_valid, tri_req_ready;
   logic [ListLineBeats*128-1:0] list_line;
-  logic [TagWidth-1:0]          entry_tag;
-  logic [ListOffW-1:0]          entry_off;
+  logic [TagWidth-1:0]          list_resp_tag, entry_tag;
+  logic [ListOffW-1:0]          list_resp_off;
+  logic [ListCountW-1:0]        list_resp_count;
   logic [TriIdxWidth-1:0]       entry_tri;
   rt_cache #(.Lines(ListCacheLines), .LineBeats(ListLineBeats), .KeyWidth(AddrWidth - ListOffW),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth + ListOffW), .Mshrs(CacheMshrs), .Targets(CacheTargets),
-             .Ways(CacheWays))
+             .AddrWidth(AddrWidth), .TagWidth(TagWidth + ListOffW + ListCountW), .Mshrs(CacheMshrs),
+             .Targets(CacheTargets), .Ways(CacheWays))
       u_list_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_req_valid_i), .req_ready_o(list_req_ready_o),
     .req_key_i(list_req_addr_i[AddrWidth-1:ListOffW]),
     .req_addr_i({list_req_addr_i[AddrWidth-1:ListOffW], {ListOffW{1'b0}}}),
-    .req_tag_i({list_req_tag_i, list_req_addr_i[ListOffW-1:0]}),
+    .req_tag_i({list_req_tag_i, list_req_addr_i[ListOffW-1:0], list_req_count_i}),
     .req2_valid_i(1'b0), .req2_ready_o(unused_req2_ready[0]), .req2_key_i('0), .req2_addr_i('0), .req2_tag_i('0),
-    .resp_valid_o(list_resp_valid), .resp_ready_i(tri_req_ready), .resp_data_o(list_line),
-    .resp_tag_o({entry_tag, entry_off}),
+    .resp_valid_o(list_resp_valid), .resp_ready_i(list_resp_ready), .resp_data_o(list_line),
+    .resp_tag_o({list_resp_tag, list_resp_off, list_resp_count}),
     .mem_req_valid_o(mem_valid[1]), .mem_req_ready_i(mem_ready[1]), .mem_req_addr_o(list_mem_addr),
     .mem_req_id_o(list_mem_id), .mem_resp_valid_i(mem_resp_valid[1]), .mem_resp_id_i(mem_resp_id),
     .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[1]), .miss_o(miss_o[1]), .merge_o(merge_o[1]),
     .wait_inflight_o(wait_inflight_o[1]), .wait_mshr_o(wait_mshr_o[1]), .filling_o(filling[1])
   );
-  assign entry_tri = TriIdxWidth'(list_line[8 * kdrt_pkg::ListEntryBytes * entry_off[ListOffW-1:EntryShift] +: 32]);
-  assign entry_fire_o = list_resp_valid && tri_req_ready;
-  assign tri_wait_o = list_resp_valid && !tri_req_ready;
+  localparam int unsigned EntryIdxW = ListOffW - EntryShift;
+  if (ListStream != 0) begin : g_stream
+    // The line register: the entries of one response, handed on one a cycle.
+    logic                         em_valid_q;
+    logic [ListLineBeats*128-1:0] em_line_q;
+    logic [EntryIdxW-1:0]         em_idx_q;
+    logic [ListCountW-1:0]        em_left_q;
+    logic [TagWidth-1:0]          em_tag_q;
+    logic                         em_last;
+    assign em_last = em_left_q == ListCountW'(1);
+    assign list_resp_ready = !em_valid_q || (tri_req_ready && em_last);
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        em_valid_q <= 1'b0;
+      end else if (list_resp_valid && list_resp_ready) begin
+        em_valid_q <= 1'b1;
+      end else if (tri_req_ready && em_last) begin
+        em_valid_q <= 1'b0;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (list_resp_valid && list_resp_ready) begin
+        em_line_q <= list_line;
+        em_idx_q <= list_resp_off[ListOffW-1:EntryShift];
+        em_left_q <= list_resp_count;
+        em_tag_q <= list_resp_tag;
+      end else if (em_valid_q && tri_req_ready) begin
+        em_idx_q <= em_idx_q + 1'b1;
+        em_left_q <= em_left_q - 1'b1;
+      end
+    end
+    assign tri_req_valid = em_valid_q;
+    assign entry_tag = em_tag_q;
+    assign entry_tri = TriIdxWidth'(em_line_q[8 * kdrt_pkg::ListEntryBytes * em_idx_q +: 32]);
+    // Only the line register's tag bits are used.
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic unused_stream;
+    assign unused_stream = ^list_resp_off[EntryShift-1:0];
+    /* verilator lint_on UNUSEDSIGNAL */
+  end else begin : g_entry
+    // The response is the entry: straight on to the triangle cache.
+    assign list_resp_ready = tri_req_ready;
+    assign tri_req_valid = list_resp_valid;
+    assign entry_tag = list_resp_tag;
+    assign entry_tri = TriIdxWidth'(list_line[8 * kdrt_pkg::ListEntryBytes * list_resp_off[ListOffW-1:EntryShift] +: 32]);
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic unused_entry;
+    assign unused_entry = ^{list_resp_count, list_resp_off[EntryShift-1:0], list_req_count_i};
+    /* verilator lint_on UNUSEDSIGNAL */
+  end
+  assign entry_fire_o = tri_req_valid && tri_req_ready;
+  assign tri_wait_o = tri_req_valid && !tri_req_ready;
 
   // A triangle line holds TriPerLine records and is named by id / TriPerLine.
   localparam int unsigned PairShift = TriPerLine == 2 ? 1 : 0;
@@ -150,7 +209,7 @@ module rt_mem_system #(
              .Ways(CacheWays))
       u_tri_cache (
     .clk_i, .rst_ni,
-    .req_valid_i(list_resp_valid), .req_ready_o(tri_req_ready), .req_key_i(tri_line_key),
+    .req_valid_i(tri_req_valid), .req_ready_o(tri_req_ready), .req_key_i(tri_line_key),
     .req_addr_i(tri_base_i + (AddrWidth'(tri_line_key) << 4) * AddrWidth'(TriLineBeats)),
     .req_tag_i({entry_tag, entry_tri}),
     .req2_valid_i(1'b0), .req2_ready_o(unused_req2_ready[1]), .req2_key_i('0), .req2_addr_i('0), .req2_tag_i('0),
@@ -183,9 +242,9 @@ module rt_mem_system #(
   rt_stream_check #(.Width(AddrWidth + 16), .Name("rt_mem_system memory request")) u_mem_check (
     .clk_i, .rst_ni, .valid_i(mem_req_valid_o), .ready_i(mem_req_ready_i), .payload_i({mem_req_addr_o, mem_req_tag_o})
   );
-  rt_stream_check #(.Width(TagWidth + AddrWidth), .Name("rt_mem_system list request")) u_list_check (
+  rt_stream_check #(.Width(TagWidth + AddrWidth + ListCountW), .Name("rt_mem_system list request")) u_list_check (
     .clk_i, .rst_ni, .valid_i(list_req_valid_i), .ready_i(list_req_ready_o),
-    .payload_i({list_req_tag_i, list_req_addr_i})
+    .payload_i({list_req_tag_i, list_req_addr_i, list_req_count_i})
   );
   rt_stream_check #(.Width(TagWidth + NodeLineBeats * 128), .Name("rt_mem_system node response")) u_node_check (
     .clk_i, .rst_ni, .valid_i(node_resp_valid_o), .ready_i(node_resp_ready_i),
@@ -200,7 +259,7 @@ module rt_mem_system #(
   // line's other entries and the node address bits within a line are unused.
   /* verilator lint_off UNUSEDSIGNAL */
   logic unused_bits;
-  assign unused_bits = ^{list_line, entry_off, node_req_addr_i, node_req2_addr_i, unused_req2_ready};
+  assign unused_bits = ^{list_line, node_req_addr_i, node_req2_addr_i, unused_req2_ready};
   /* verilator lint_on UNUSEDSIGNAL */
 
 endmodule

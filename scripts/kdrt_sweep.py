@@ -41,6 +41,7 @@ PARAMS = {
     "image_format": "--image-format",
     "min_split_gain": "--min-split-gain",
     "ray_order": "--ray-order",
+    "list_stream": "--list-stream",
 }
 SPEC_KEYS = {"scenes", "formats", "res", "params", "model", "shade", "allow_overflow"}
 # What each point reports, from `kdrt sim --json`.

@@ -500,7 +500,7 @@ class FastCore {
         th_(threads_), fetch_arb_(threads_), fetch2_arb_(threads_), exit_arb_(threads_), out_arb_(threads_),
         moves_(static_cast<size_t>(threads_)), since_(static_cast<size_t>(threads_), 0),
         clip_pipe_(threads_, true), trav_pipe_(threads_, true), jobs_(threads_, true),
-        lists_(spec.image->lists()), header_(spec.image->header()) {
+        stream_(spec.config[kListStream] != 0), lists_(spec.image->lists()), header_(spec.image->header()) {
     const CoreConfig& cfg = spec.config;
     const int m = cfg.Format().m;
     // Ray setup and clip (rt_ray_setup M + 8, rt_clip_unit 11) and the
@@ -535,7 +535,7 @@ class FastCore {
   bool Quiet() const {
     return !record_valid_ && in_state_[kFetch] == 0 && in_state_[kExit] == 0 && in_state_[kDone] == 0 &&
            !(has_pending_ ? in_state_[kFree] > 0 : !queue_.Exhausted(index_)) && n_leaf_done_ == 0 &&
-           !list_req_valid_ && jobs_.empty() && node_.Quiet() && list_.Quiet() && tri_.Quiet() && !Done();
+           !list_req_valid_ && em_left_ == 0 && jobs_.empty() && node_.Quiet() && list_.Quiet() && tri_.Quiet() && !Done();
   }
   // The first cycle a pipeline delivers (UINT64_MAX: none busy).
   uint64_t NextEvent() const {
@@ -613,6 +613,13 @@ class FastCore {
   bool list_req_valid_ = false;
   Job list_job_{};
   uint32_t list_k_ = 0;  // entries of list_job_ requested so far
+  // ListStream: a request names the job's entries in one list line (at
+  // most 8; its count rides in tag bits 40 and up), and rt_mem_system's
+  // line register hands them to the triangle cache one a cycle: the next
+  // entry, how many are left (0: empty) and whose they are.
+  bool stream_ = false;
+  uint32_t em_entry_ = 0, em_left_ = 0;
+  uint64_t em_thread_ = 0;
   // The harness's side: the ray offered (ray_valid_i), the rays in flight.
   bool has_pending_ = false;
   size_t pending_ray_ = 0;
@@ -764,22 +771,43 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   // The list unit's request (registered), the list cache, the triangle
   // cache behind it (its request is the list cache's response).
   Cache::Req lr;
+  uint32_t lr_n = 1;
   if (list_req_valid_) {
     const uint64_t addr = header_.list_offset + uint64_t{list_job_.first + list_k_} * img::kListEntryBytes;
-    lr = {true, addr >> 5, uint64_t(list_job_.thread) << 32 | (list_job_.first + list_k_)};
+    if (stream_) {
+      const uint32_t in_line = static_cast<uint32_t>((32 - (addr & 31)) / img::kListEntryBytes);
+      lr_n = std::min(in_line, list_job_.count - list_k_);
+    }
+    lr = {true, addr >> 5, uint64_t{lr_n} << 40 | uint64_t(list_job_.thread) << 32 | (list_job_.first + list_k_)};
   }
   Cache::Req trq;
-  if (list_.resp_valid()) {
+  if (stream_) {
+    if (em_left_ > 0) trq = {true, lists_[em_entry_] / tri_per_line_, em_thread_};
+  } else if (list_.resp_valid()) {
     const uint64_t tag = list_.resp_tag();
     const uint32_t id = lists_[tag & 0xFFFFFFFFu];
     // The triangle cache's tag: the thread (the RTL's tag also has the id,
     // which only the datapath uses).
-    trq = {true, id / tri_per_line_, tag >> 32};
+    trq = {true, id / tri_per_line_, (tag >> 32) & 0xFF};
   }
   const bool tri_fire = tri_.resp_valid();
   const int tri_thread = tri_fire ? static_cast<int>(tri_.resp_tag()) : -1;
   const bool tri_taken = tri_.Step(trq, Cache::Req{}, true, g == 2, resp_cache == 2 ? resp_id : -1) & 1u;
-  const bool list_taken = list_.Step(lr, Cache::Req{}, tri_taken, g == 1, resp_cache == 1 ? resp_id : -1) & 1u;
+  const bool list_resp_ready = stream_ ? (em_left_ == 0 || (tri_taken && em_left_ == 1)) : tri_taken;
+  const bool list_resp_fire = list_.resp_valid() && list_resp_ready;
+  const uint64_t list_resp_tag = list_resp_fire ? list_.resp_tag() : 0;
+  const bool list_taken = list_.Step(lr, Cache::Req{}, list_resp_ready, g == 1, resp_cache == 1 ? resp_id : -1) & 1u;
+  if (stream_) {
+    if (tri_taken) {
+      ++em_entry_;
+      --em_left_;
+    }
+    if (list_resp_fire) {
+      em_entry_ = static_cast<uint32_t>(list_resp_tag);
+      em_thread_ = (list_resp_tag >> 32) & 0xFF;
+      em_left_ = static_cast<uint32_t>(list_resp_tag >> 40);
+    }
+  }
   const bool list_fire = list_req_valid_ && list_taken;
   // rt_perf_events' list_busy: an entry requested or one answered (its
   // triangle taken by the triangle cache).
@@ -822,7 +850,7 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   // rt_list_unit: the request register and the job FIFO.
   const bool queued = !jobs_.empty();
   if (list_fire) {
-    ++list_k_;
+    list_k_ += lr_n;
     if (list_k_ == list_job_.count) list_req_valid_ = false;
   }
   // queued_pop: a job leaves the FIFO when req_valid_o was low this cycle.

@@ -5,11 +5,16 @@
 // taken only when the walker is idle (a job queued in a cycle is seen the
 // next). Jobs come in random bursts, held until taken (picorv32's rule);
 // requests meet random backpressure. First entries span the whole 32-bit
-// word (the address keeps AddrWidth bits), counts 1 .. 12.
+// word (the address keeps AddrWidth bits), counts 1 .. 12. Twice: one entry
+// a request, and with ListStream 1, where a request names every entry of
+// the job left in the entry's 32-byte line (req_count_o) and the next
+// request starts at the next line.
+#include <algorithm>
 #include <cstdio>
 #include <deque>
 
 #include "Vrt_list_unit.h"
+#include "Vrt_list_unit_stream.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -36,9 +41,15 @@ struct Model {
   uint32_t tag = 0, addr = 0, left = 0;
 };
 
-bool Run(uint64_t cycles) {
-  SimCtrl<Vrt_list_unit> sim;
-  Vrt_list_unit& dut = sim.top();
+// The entries a request names: one, or (stream) the job's left in the line.
+uint32_t RequestCount(bool stream, uint32_t addr, uint32_t left) {
+  return stream ? std::min(left, (32 - (addr & 31)) / 4) : 1;
+}
+
+template <class Dut>
+bool Run(const char* name, bool stream, uint64_t cycles) {
+  SimCtrl<Dut> sim;
+  Dut& dut = sim.top();
   dut.job_valid_i = 0;
   dut.req_ready_i = 0;
   sim.Reset();
@@ -47,14 +58,14 @@ bool Run(uint64_t cycles) {
   Job pending;
   bool offering = false;
   double p_job = 0.3, p_ready = 0.7;
-  uint64_t jobs = 0, requests = 0, full_cycles = 0;
+  uint64_t jobs = 0, requests = 0, entries = 0, full_cycles = 0, multi = 0;
   uint32_t base = 0;
   auto fail = [&](const char* what, uint64_t cycle) {
-    std::printf("rt_list_unit: FAIL at cycle %llu: %s\n", static_cast<unsigned long long>(cycle), what);
+    std::printf("rt_list_unit (%s): FAIL at cycle %llu: %s\n", name, static_cast<unsigned long long>(cycle), what);
     std::printf("  model: %zu jobs queued, walker %s tag %u addr 0x%05x left %u\n", m.queue.size(),
                 m.active ? "busy" : "idle", m.tag, m.addr, m.left);
-    std::printf("  rtl:   job_ready %d req_valid %d tag %u addr 0x%05x\n", dut.job_ready_o, dut.req_valid_o,
-                dut.req_tag_o, dut.req_addr_o);
+    std::printf("  rtl:   job_ready %d req_valid %d tag %u addr 0x%05x count %u\n", dut.job_ready_o,
+                dut.req_valid_o, dut.req_tag_o, dut.req_addr_o, dut.req_count_o);
     return false;
   };
   for (uint64_t cycle = 0; cycle < cycles; ++cycle) {
@@ -63,7 +74,11 @@ bool Run(uint64_t cycles) {
       p_ready = std::array<double, 4>{1.0, 0.9, 0.5, 0.1}[rng.Below(4)];
     }
     // list_base_i is stable while busy: a new one only when all is quiet.
-    if (!m.active && m.queue.empty() && !offering && rng.Chance(0.01)) base = rng.Bits32() & kAddrMask;
+    // (With ListStream a multiple of the entry size, as the image's list
+    // section is: an entry never straddles two lines.)
+    if (!m.active && m.queue.empty() && !offering && rng.Chance(0.01)) {
+      base = rng.Bits32() & kAddrMask & (stream ? ~3u : ~0u);
+    }
     if (!offering && rng.Chance(p_job)) {
       offering = true;
       pending = Job{rng.Bits32() & kTagMask, rng.Chance(0.5) ? rng.Bits32() : rng.Below(64), 1 + rng.Below(12)};
@@ -77,7 +92,11 @@ bool Run(uint64_t cycles) {
     sim.Settle();
     if (static_cast<bool>(dut.job_ready_o) != (m.queue.size() < kJobs)) return fail("job_ready_o", cycle);
     if (static_cast<bool>(dut.req_valid_o) != m.active) return fail("req_valid_o", cycle);
-    if (m.active && (dut.req_tag_o != m.tag || dut.req_addr_o != m.addr)) return fail("request payload", cycle);
+    const uint32_t n = m.active ? RequestCount(stream, m.addr, m.left) : 0;
+    if (m.active && n == 0) return fail("the model asks for no entry", cycle);
+    if (m.active && (dut.req_tag_o != m.tag || dut.req_addr_o != m.addr || dut.req_count_o != n)) {
+      return fail("request payload", cycle);
+    }
     full_cycles += m.queue.size() == kJobs;
     const bool job_fire = dut.job_valid_i && dut.job_ready_o;
     const bool req_fire = dut.req_valid_o && dut.req_ready_i;
@@ -92,8 +111,11 @@ bool Run(uint64_t cycles) {
       m.left = j.count;
     } else if (req_fire) {
       ++requests;
-      m.addr = (m.addr + 4) & kAddrMask;
-      if (--m.left == 0) m.active = false;
+      entries += n;
+      multi += n > 1;
+      m.addr = (m.addr + 4 * n) & kAddrMask;
+      m.left -= n;
+      if (m.left == 0) m.active = false;
     }
     if (job_fire) {
       m.queue.push_back(pending);
@@ -102,12 +124,19 @@ bool Run(uint64_t cycles) {
     }
   }
   if (full_cycles == 0) {
-    std::printf("rt_list_unit: FAIL: the job queue never filled\n");
+    std::printf("rt_list_unit (%s): FAIL: the job queue never filled\n", name);
     return false;
   }
-  std::printf("rt_list_unit: PASS (%llu cycles, %llu jobs, %llu requests, queue full in %llu cycles)\n",
-              static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(jobs),
-              static_cast<unsigned long long>(requests), static_cast<unsigned long long>(full_cycles));
+  if (stream != (multi > 0)) {
+    std::printf("rt_list_unit (%s): FAIL: %llu requests of several entries\n", name,
+                static_cast<unsigned long long>(multi));
+    return false;
+  }
+  std::printf("rt_list_unit (%s): PASS (%llu cycles, %llu jobs, %llu requests for %llu entries, queue full in "
+              "%llu cycles)\n",
+              name, static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(jobs),
+              static_cast<unsigned long long>(requests), static_cast<unsigned long long>(entries),
+              static_cast<unsigned long long>(full_cycles));
   return true;
 }
 
@@ -117,7 +146,9 @@ bool Run(uint64_t cycles) {
 int main(int argc, char** argv) {
   using namespace kdrt::rtlbench;
   Verilated::commandArgs(argc, argv);
-  const bool ok = Run(LongRun() ? 10000000 : 1000000);
+  const uint64_t cycles = LongRun() ? 10000000 : 1000000;
+  bool ok = Run<Vrt_list_unit>("an entry a request", false, cycles);
+  ok = Run<Vrt_list_unit_stream>("ListStream 1", true, cycles) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

@@ -15,14 +15,17 @@
 // per cycle, and refuses requests at random; node requests come in bursts
 // and may change or drop while not taken (the core's arbiter does), list
 // requests are held until taken; both responses meet random backpressure.
-// Three times: direct-mapped caches, 2-way ones (CacheWays 2), and
-// direct-mapped with two triangle records per line.
+// Four times: direct-mapped caches, 2-way ones (CacheWays 2),
+// direct-mapped with two triangle records per line, and with ListStream 1,
+// where a list request names 1 .. 8 entries from its address on within its
+// 32-byte line (list_req_count_i), each answered once on the triangle port.
 #include <cstdio>
 #include <map>
 #include <vector>
 
 #include "Vrt_mem_system.h"
 #include "Vrt_mem_system_pairs.h"
+#include "Vrt_mem_system_stream.h"
 #include "Vrt_mem_system_ways2.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
@@ -56,7 +59,7 @@ struct NodeReq {
   uint32_t tag, addr;
 };
 struct ListReq {
-  uint32_t tag, addr;
+  uint32_t tag, addr, count;
 };
 struct Beat {
   uint64_t due;
@@ -64,7 +67,7 @@ struct Beat {
 };
 
 template <class Dut>
-bool Run(const char* name, uint64_t count, uint32_t tris_per_line = 1) {
+bool Run(const char* name, uint64_t count, uint32_t tris_per_line = 1, bool stream = false) {
   std::printf("rt_mem_system, %s:\n", name);
   SimCtrl<Dut> sim;
   Dut& dut = sim.top();
@@ -81,7 +84,7 @@ bool Run(const char* name, uint64_t count, uint32_t tris_per_line = 1) {
   NodeReq node_offer{};
   ListReq list_offer{};
   bool node_offering = false, list_offering = false;
-  uint64_t node_sent = 0, list_sent = 0, node_answered = 0, tri_answered = 0, entries = 0;
+  uint64_t node_sent = 0, list_sent = 0, list_entries = 0, node_answered = 0, tri_answered = 0, entries = 0;
   uint64_t hits[3] = {0, 0, 0}, misses[3] = {0, 0, 0};
   double p_node = 0.5, p_list = 0.5, p_ready = 0.8, p_mem_ready = 0.8;
   uint64_t cycle = 0;
@@ -90,7 +93,9 @@ bool Run(const char* name, uint64_t count, uint32_t tris_per_line = 1) {
     return false;
   };
   const uint64_t limit = 400 * count + 10000;
-  for (; node_answered < count || tri_answered < count || !node_out.empty() || !list_out.empty(); ++cycle) {
+  for (; node_answered < count || tri_answered < list_entries || list_sent < count || !node_out.empty() ||
+         !list_out.empty();
+       ++cycle) {
     if (cycle > limit) return fail("timeout: requests left unanswered");
     if (cycle % 300 == 0) {
       p_node = std::array<double, 3>{0.9, 0.4, 0.05}[rng.Below(3)];
@@ -109,7 +114,8 @@ bool Run(const char* name, uint64_t count, uint32_t tris_per_line = 1) {
       }
     }
     if (!list_offering && list_sent < count && rng.Chance(p_list)) {
-      list_offer = ListReq{rng.Below(kTags), kListBase + 4 * rng.Below(kListEntries)};
+      const uint32_t addr = kListBase + 4 * rng.Below(kListEntries);
+      list_offer = ListReq{rng.Below(kTags), addr, stream ? 1 + rng.Below((32 - addr % 32) / 4) : 1};
       list_offering = true;
     }
     dut.node_req_valid_i = node_offering;
@@ -118,6 +124,7 @@ bool Run(const char* name, uint64_t count, uint32_t tris_per_line = 1) {
     dut.list_req_valid_i = list_offering;
     dut.list_req_tag_i = list_offer.tag;
     dut.list_req_addr_i = list_offer.addr;
+    dut.list_req_count_i = list_offer.count;
     dut.node_resp_ready_i = rng.Chance(p_ready);
     dut.tri_resp_ready_i = rng.Chance(p_ready);
     dut.mem_req_ready_i = rng.Chance(p_mem_ready);
@@ -154,7 +161,8 @@ bool Run(const char* name, uint64_t count, uint32_t tris_per_line = 1) {
       ++node_sent;
     }
     if (dut.list_req_valid_i && dut.list_req_ready_o) {
-      list_out.emplace(list_offer.tag, list_offer.addr);
+      for (uint32_t k = 0; k < list_offer.count; ++k) list_out.emplace(list_offer.tag, list_offer.addr + 4 * k);
+      list_entries += list_offer.count;
       list_offering = false;
       ++list_sent;
     }
@@ -196,14 +204,18 @@ bool Run(const char* name, uint64_t count, uint32_t tris_per_line = 1) {
   }
   if (hits[0] + misses[0] != node_sent) return fail("node cache: hits + misses != requests");
   if (hits[1] + misses[1] != list_sent) return fail("list cache: hits + misses != requests");
-  if (hits[2] + misses[2] != entries || entries != list_sent) return fail("triangle cache: hits + misses != entries");
+  if (hits[2] + misses[2] != entries || entries != list_entries) {
+    return fail("triangle cache: hits + misses != entries");
+  }
+  if (stream != (list_entries > list_sent)) return fail("list requests of several entries (only with ListStream)");
   if (!memory.empty()) return fail("memory beats requested and never used");
   for (int c = 0; c < 3; ++c) {
     if (hits[c] == 0 || misses[c] == 0) return fail("a cache saw no hit or no miss");
   }
-  std::printf("rt_mem_system: PASS (%llu node and %llu list requests, %llu cycles; hits/misses node %llu/%llu, "
-              "list %llu/%llu, triangle %llu/%llu)\n",
+  std::printf("rt_mem_system: PASS (%llu node and %llu list requests of %llu entries, %llu cycles; hits/misses node "
+              "%llu/%llu, list %llu/%llu, triangle %llu/%llu)\n",
               static_cast<unsigned long long>(node_sent), static_cast<unsigned long long>(list_sent),
+              static_cast<unsigned long long>(list_entries),
               static_cast<unsigned long long>(cycle), static_cast<unsigned long long>(hits[0]),
               static_cast<unsigned long long>(misses[0]), static_cast<unsigned long long>(hits[1]),
               static_cast<unsigned long long>(misses[1]), static_cast<unsigned long long>(hits[2]),
@@ -221,6 +233,7 @@ int main(int argc, char** argv) {
   bool ok = Run<Vrt_mem_system>("direct-mapped caches", count);
   ok = Run<Vrt_mem_system_ways2>("2-way caches", count) && ok;
   ok = Run<Vrt_mem_system_pairs>("two triangle records per line", count, 2) && ok;
+  ok = Run<Vrt_mem_system_stream>("a list line a request (ListStream 1)", count, 1, true) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

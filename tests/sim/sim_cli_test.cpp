@@ -448,6 +448,45 @@ TEST_F(SimCli, MortonRayOrder) {
   EXPECT_FALSE(fs::exists(Path("b.png")));
 }
 
+// ListStream 1 (rt_list_unit, rt_mem_system): the list unit asks for a
+// leaf's entries a list line at a time and a line register hands them on
+// one a cycle. The RTL still returns the reference's record for every ray
+// (the same hit buffer as the default core), the fast model follows it
+// cycle for cycle, on one core and on two, with two triangle records a line
+// (fp16), and the list cache sees fewer requests than there are entries.
+TEST_F(SimCli, ListStreamMatchesTheFastModel) {
+  const std::string common = "sim gen:gears:1500 --res 24x24 --format fp16 -q";
+  const RunResult d = RunKdrt(common + " --model fast -o " + Path("d.png") + " --hits " + Path("d.exr") +
+                              " --json " + Path("d.json"));
+  ASSERT_EQ(d.exit_code, 0) << d.output;
+  const RunResult r = RunKdrt(common + " --list-stream 1 --model both -o " + Path("s.png") + " --hits " +
+                              Path("s.exr") + " --json " + Path("s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ExpectSameHitBuffers(Path("d.exr"), Path("s.exr"));
+  const nlohmann::json j = ReadJson(Path("s.json"));
+  const nlohmann::json dj = ReadJson(Path("d.json"));
+  EXPECT_EQ(j["model"]["ListStream"].get<int>(), 1);
+  EXPECT_EQ(dj["model"]["ListStream"].get<int>(), 0);
+  ExpectFastEqualsRtl(j);
+  const auto requests = [](const nlohmann::json& k, const std::string& cache) {
+    return k["perf_counts"][cache + "_hit"].get<uint64_t>() + k["perf_counts"][cache + "_miss"].get<uint64_t>();
+  };
+  // Every entry still goes to the triangle cache once; the list cache is
+  // asked once per line instead of once per entry.
+  EXPECT_EQ(requests(j, "tri"), requests(dj, "tri"));
+  EXPECT_EQ(requests(dj, "list"), requests(dj, "tri"));
+  EXPECT_LT(requests(j, "list"), requests(j, "tri"));
+  const RunResult c = RunKdrt(common + " --list-stream 1 --cores 2 --ray-chunk 16 --model both -o " + Path("c.png") +
+                              " --json " + Path("c.json"));
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const nlohmann::json cj = ReadJson(Path("c.json"));
+  ExpectFastEqualsRtl(cj);
+  EXPECT_EQ(cj["fast"]["report"]["per_core"], cj["per_core"]);
+  const RunResult bad = RunKdrt(common + " --list-stream 2 -o " + Path("b.png"));
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_FALSE(fs::exists(Path("b.png")));
+}
+
 // Rays lying in the kd-tree's split planes (a NaN split distance: both
 // children, and no early stop while the far child waits on the stack,
 // InPlane in trace/traversal.h and rtl/rt_leaf_exit.sv): the RTL returns the
