@@ -121,26 +121,28 @@ module rt_mem_system #(
     .wait_inflight_o(wait_inflight_o[0]), .wait_mshr_o(wait_mshr_o[0]), .filling_o(filling[0])
   );
 
-  // The list cache's tag carries the entry's offset in its line and the
-  // request's count.
+  // The list cache's tag carries the entry's offset in its line and, with
+  // ListStream, the request's count (without it the cache is the one it was
+  // before ListStream existed).
+  localparam int unsigned ListTagW = TagWidth + ListOffW + (ListStream != 0 ? ListCountW : 0);
   logic                         list_resp_valid, list_resp_ready, tri_req_valid, tri_req_ready;
   logic [ListLineBeats*128-1:0] list_line;
+  logic [ListTagW-1:0]          list_req_tag_full, list_resp_tag_full;
   logic [TagWidth-1:0]          list_resp_tag, entry_tag;
   logic [ListOffW-1:0]          list_resp_off;
-  logic [ListCountW-1:0]        list_resp_count;
   logic [TriIdxWidth-1:0]       entry_tri;
   rt_cache #(.Lines(ListCacheLines), .LineBeats(ListLineBeats), .KeyWidth(AddrWidth - ListOffW),
-             .AddrWidth(AddrWidth), .TagWidth(TagWidth + ListOffW + ListCountW), .Mshrs(CacheMshrs),
+             .AddrWidth(AddrWidth), .TagWidth(ListTagW), .Mshrs(CacheMshrs),
              .Targets(CacheTargets), .Ways(CacheWays))
       u_list_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_req_valid_i), .req_ready_o(list_req_ready_o),
     .req_key_i(list_req_addr_i[AddrWidth-1:ListOffW]),
     .req_addr_i({list_req_addr_i[AddrWidth-1:ListOffW], {ListOffW{1'b0}}}),
-    .req_tag_i({list_req_tag_i, list_req_addr_i[ListOffW-1:0], list_req_count_i}),
+    .req_tag_i(list_req_tag_full),
     .req2_valid_i(1'b0), .req2_ready_o(unused_req2_ready[0]), .req2_key_i('0), .req2_addr_i('0), .req2_tag_i('0),
     .resp_valid_o(list_resp_valid), .resp_ready_i(list_resp_ready), .resp_data_o(list_line),
-    .resp_tag_o({list_resp_tag, list_resp_off, list_resp_count}),
+    .resp_tag_o(list_resp_tag_full),
     .mem_req_valid_o(mem_valid[1]), .mem_req_ready_i(mem_ready[1]), .mem_req_addr_o(list_mem_addr),
     .mem_req_id_o(list_mem_id), .mem_resp_valid_i(mem_resp_valid[1]), .mem_resp_id_i(mem_resp_id),
     .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[1]), .miss_o(miss_o[1]), .merge_o(merge_o[1]),
@@ -148,6 +150,9 @@ module rt_mem_system #(
   );
   localparam int unsigned EntryIdxW = ListOffW - EntryShift;
   if (ListStream != 0) begin : g_stream
+    logic [ListCountW-1:0] list_resp_count;
+    assign list_req_tag_full = {list_req_tag_i, list_req_addr_i[ListOffW-1:0], list_req_count_i};
+    assign {list_resp_tag, list_resp_off, list_resp_count} = list_resp_tag_full;
     // The line register: the entries of one response, handed on one a cycle.
     logic                         em_valid_q;
     logic [ListLineBeats*128-1:0] em_line_q;
@@ -186,6 +191,8 @@ module rt_mem_system #(
     assign unused_stream = ^list_resp_off[EntryShift-1:0];
     /* verilator lint_on UNUSEDSIGNAL */
   end else begin : g_entry
+    assign list_req_tag_full = {list_req_tag_i, list_req_addr_i[ListOffW-1:0]};
+    assign {list_resp_tag, list_resp_off} = list_resp_tag_full;
     // The response is the entry: straight on to the triangle cache.
     assign list_resp_ready = tri_req_ready;
     assign tri_req_valid = list_resp_valid;
@@ -193,7 +200,7 @@ module rt_mem_system #(
     assign entry_tri = TriIdxWidth'(list_line[8 * kdrt_pkg::ListEntryBytes * list_resp_off[ListOffW-1:EntryShift] +: 32]);
     /* verilator lint_off UNUSEDSIGNAL */
     logic unused_entry;
-    assign unused_entry = ^{list_resp_count, list_resp_off[EntryShift-1:0], list_req_count_i};
+    assign unused_entry = ^{list_resp_off[EntryShift-1:0], list_req_count_i};
     /* verilator lint_on UNUSEDSIGNAL */
   end
   assign entry_fire_o = tri_req_valid && tri_req_ready;
