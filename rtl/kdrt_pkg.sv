@@ -83,6 +83,12 @@ package kdrt_pkg;
     if (img_tris_per_line(w) == 2) img_tri_slot_bits = 192;
     else img_tri_slot_bits = 128 * img_tri_line_beats(w);
   endfunction
+  // Bits of a count of list entries in a list line of `line_bytes` (0 ..
+  // line_bytes / ListEntryBytes): a streaming list request's (rt_list_unit,
+  // rt_mem_system with ListStream).
+  function automatic int unsigned list_count_bits(input int unsigned line_bytes);
+    list_count_bits = $clog2(line_bytes / ListEntryBytes + 1);
+  endfunction
 
   // Node word 1, bits [1:0]: split axis 0/1/2 or NodeLeaf; bits [31:2]: the
   // above child's index (inner node) or the triangle count (leaf).

@@ -261,7 +261,7 @@ module rt_core #(
   logic                   job_push, list_req_valid, list_req_ready, entry_fire;
   logic [ThW-1:0]         list_req_tag, tri_tag;
   logic [AddrWidth-1:0]   list_req_addr;
-  logic [$clog2(16 * ListLineBeats / kdrt_pkg::ListEntryBytes + 1)-1:0] list_req_count;
+  logic [kdrt_pkg::list_count_bits(16 * ListLineBeats)-1:0] list_req_count;
   logic                   tri_valid, tri_fire;
   logic [TriIdxWidth-1:0] tri_id;
   logic [TriRecBits-1:0]  tri_record;

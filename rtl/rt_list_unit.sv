@@ -20,7 +20,7 @@ module rt_list_unit #(
   parameter int unsigned AddrWidth = 28,
   parameter int unsigned ListStream = 0,
   parameter int unsigned LineBytes = 32,
-  localparam int unsigned ReqCountW = $clog2(LineBytes / kdrt_pkg::ListEntryBytes + 1)
+  localparam int unsigned ReqCountW = kdrt_pkg::list_count_bits(LineBytes)
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,

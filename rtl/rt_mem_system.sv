@@ -42,7 +42,7 @@ module rt_mem_system #(
   // 1: a list request names the entries of one line (list_req_count_i).
   parameter int unsigned ListStream = 0,
   localparam int unsigned TriBits = 128 * TriLineBeats / TriPerLine,
-  localparam int unsigned ListCountW = $clog2(16 * ListLineBeats / kdrt_pkg::ListEntryBytes + 1)
+  localparam int unsigned ListCountW = kdrt_pkg::list_count_bits(16 * ListLineBeats)
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,

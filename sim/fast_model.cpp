@@ -352,6 +352,21 @@ constexpr int kBitRayIn = PerfBit("ray_in"), kBitRayOut = PerfBit("ray_out"), kB
 
 enum State : uint8_t { kFree, kSetup, kFetch, kWaitNode, kTrav, kLeaf, kExit, kDone };
 
+// Node and list cache lines: NodeLineBeats = ListLineBeats = 2 beats
+// (rt_core), named by address / kLineBytes.
+constexpr uint64_t kLineBytes = 32;
+
+// A list request's tag: the thread (rt_core allows at most 256), its first
+// list entry and, with ListStream, how many entries from it the request names.
+struct ListTag {
+  static uint64_t Make(uint32_t thread, uint32_t entry, uint32_t count) {
+    return uint64_t{count} << 40 | uint64_t{thread} << 32 | entry;
+  }
+  static uint32_t Entry(uint64_t tag) { return static_cast<uint32_t>(tag); }
+  static uint64_t Thread(uint64_t tag) { return (tag >> 32) & 0xFF; }
+  static uint32_t Count(uint64_t tag) { return static_cast<uint32_t>(tag >> 40); }
+};
+
 // A step of a ray's path: a node it fetches, decoded once, with its node
 // cache key and, for a leaf, its list entries (count kInner: an inner node).
 constexpr uint32_t kInner = 0xFFFFFFFFu;
@@ -437,7 +452,7 @@ RayPaths TraceReference(const FastSpec& spec, FastReference* ref, bool keep_per_
     for (uint32_t i : paths[r]) {
       if (!decoded[i]) {
         decoded[i] = 1;
-        nodes[i].key = static_cast<uint32_t>((h.node_offset + layout.NodeBeatOffset(i)) >> 5);
+        nodes[i].key = static_cast<uint32_t>((h.node_offset + layout.NodeBeatOffset(i)) / kLineBytes);
         const img::Node n = image.node(i);
         if (n.IsLeaf()) {
           nodes[i].count = n.Count();
@@ -488,12 +503,12 @@ class FastCore {
            int index, bool lazy_memory)
       : paths_(paths), ref_(ref), mem_(mem), queue_(queue), index_(index), lazy_(lazy_memory),
         timeout_(spec.timeout), threads_(spec.config[kThreads]),
-        // Node and list lines are named by address / 32, triangle lines by
-        // triangle id / P.
-        node_(spec.config[kNodeCacheLines], spec.config[kCacheWays], 2, spec.config[kCacheMshrs],
-              spec.config[kCacheTargets], true, 0, 32),
-        list_(spec.config[kListCacheLines], spec.config[kCacheWays], 2, spec.config[kCacheMshrs],
-              spec.config[kCacheTargets], false, 0, 32),
+        // Node and list lines are named by address / kLineBytes, triangle
+        // lines by triangle id / P.
+        node_(spec.config[kNodeCacheLines], spec.config[kCacheWays], static_cast<int>(kLineBytes / kBeatBytes),
+              spec.config[kCacheMshrs], spec.config[kCacheTargets], true, 0, kLineBytes),
+        list_(spec.config[kListCacheLines], spec.config[kCacheWays], static_cast<int>(kLineBytes / kBeatBytes),
+              spec.config[kCacheMshrs], spec.config[kCacheTargets], false, 0, kLineBytes),
         tri_(spec.config[kTriCacheLines], spec.config[kCacheWays], spec.image->layout().TriangleLineBeats(),
              spec.config[kCacheMshrs], spec.config[kCacheTargets], false, spec.image->header().tri_offset,
              spec.image->layout().TriangleLineBytes()),
@@ -614,7 +629,7 @@ class FastCore {
   Job list_job_{};
   uint32_t list_k_ = 0;  // entries of list_job_ requested so far
   // ListStream: a request names the job's entries in one list line (at
-  // most 8; its count rides in tag bits 40 and up), and rt_mem_system's
+  // most 8; its count rides in its ListTag), and rt_mem_system's
   // line register hands them to the triangle cache one a cycle: the next
   // entry, how many are left (0: empty) and whose they are.
   bool stream_ = false;
@@ -775,20 +790,19 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   if (list_req_valid_) {
     const uint64_t addr = header_.list_offset + uint64_t{list_job_.first + list_k_} * img::kListEntryBytes;
     if (stream_) {
-      const uint32_t in_line = static_cast<uint32_t>((32 - (addr & 31)) / img::kListEntryBytes);
+      const auto in_line = static_cast<uint32_t>((kLineBytes - addr % kLineBytes) / img::kListEntryBytes);
       lr_n = std::min(in_line, list_job_.count - list_k_);
     }
-    lr = {true, addr >> 5, uint64_t{lr_n} << 40 | uint64_t(list_job_.thread) << 32 | (list_job_.first + list_k_)};
+    lr = {true, addr / kLineBytes, ListTag::Make(static_cast<uint32_t>(list_job_.thread), list_job_.first + list_k_, lr_n)};
   }
   Cache::Req trq;
   if (stream_) {
     if (em_left_ > 0) trq = {true, lists_[em_entry_] / tri_per_line_, em_thread_};
   } else if (list_.resp_valid()) {
     const uint64_t tag = list_.resp_tag();
-    const uint32_t id = lists_[tag & 0xFFFFFFFFu];
     // The triangle cache's tag: the thread (the RTL's tag also has the id,
     // which only the datapath uses).
-    trq = {true, id / tri_per_line_, (tag >> 32) & 0xFF};
+    trq = {true, lists_[ListTag::Entry(tag)] / tri_per_line_, ListTag::Thread(tag)};
   }
   const bool tri_fire = tri_.resp_valid();
   const int tri_thread = tri_fire ? static_cast<int>(tri_.resp_tag()) : -1;
@@ -803,9 +817,9 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
       --em_left_;
     }
     if (list_resp_fire) {
-      em_entry_ = static_cast<uint32_t>(list_resp_tag);
-      em_thread_ = (list_resp_tag >> 32) & 0xFF;
-      em_left_ = static_cast<uint32_t>(list_resp_tag >> 40);
+      em_entry_ = ListTag::Entry(list_resp_tag);
+      em_thread_ = ListTag::Thread(list_resp_tag);
+      em_left_ = ListTag::Count(list_resp_tag);
     }
   }
   const bool list_fire = list_req_valid_ && list_taken;

@@ -283,7 +283,8 @@ TEST_F(SimCli, SeveralCoresShareTheL2) {
 // reference's hits, and --model fast alone needs no RTL model.
 // The fast model's report beside the RTL's (kdrt sim --model both): the
 // same cycles and every performance counter, the stall breakdown, the
-// thread states, the memory's bytes and the rays in flight.
+// thread states, the memory's bytes and the rays in flight, and with
+// several cores every core's figures.
 void ExpectFastEqualsRtl(const nlohmann::json& j) {
   const nlohmann::json& f = j["fast"]["report"];
   EXPECT_EQ(j["cycle_model"], "rtl");
@@ -296,6 +297,10 @@ void ExpectFastEqualsRtl(const nlohmann::json& j) {
   EXPECT_EQ(f["thread_states"], j["thread_states"]);
   EXPECT_EQ(f["memory"]["bytes_read"], j["memory"]["bytes_read"]);
   EXPECT_EQ(f["max_rays_in_flight"], j["max_rays_in_flight"]);
+  EXPECT_EQ(f.contains("per_core"), j.contains("per_core"));
+  if (j.contains("per_core")) {
+    EXPECT_EQ(f["per_core"], j["per_core"]);
+  }
 }
 
 class FastModelMatchesRtl : public SimCli, public ::testing::WithParamInterface<SceneCase> {};
@@ -346,7 +351,6 @@ TEST_P(FastModelMatchesRtlCores, SameCyclesPerCore) {
   const nlohmann::json& f = j["fast"]["report"];
   ASSERT_TRUE(j.contains("per_core"));
   ExpectFastEqualsRtl(j);
-  EXPECT_EQ(f["per_core"], j["per_core"]);
   EXPECT_EQ(f["l2"], j["l2"]);
   // Every core worked, and the fast model alone gives the same image.
   for (const auto& core : f["per_core"]) EXPECT_GT(core["rays"].get<uint64_t>(), 0u);
@@ -437,8 +441,8 @@ TEST_F(SimCli, MortonRayOrder) {
                               Path("c.png") + " --json " + Path("c.json"));
   ASSERT_EQ(c.exit_code, 0) << c.output;
   const nlohmann::json cj = ReadJson(Path("c.json"));
+  ASSERT_TRUE(cj.contains("per_core"));
   ExpectFastEqualsRtl(cj);
-  EXPECT_EQ(cj["fast"]["report"]["per_core"], cj["per_core"]);
 
   const std::string rays = Path("x.rays");
   WriteRaysFile(rays, {Ray{{0, 0, -5}, {0, 0, 1}, 0, 100}});
@@ -480,8 +484,8 @@ TEST_F(SimCli, ListStreamMatchesTheFastModel) {
                               " --json " + Path("c.json"));
   ASSERT_EQ(c.exit_code, 0) << c.output;
   const nlohmann::json cj = ReadJson(Path("c.json"));
+  ASSERT_TRUE(cj.contains("per_core"));
   ExpectFastEqualsRtl(cj);
-  EXPECT_EQ(cj["fast"]["report"]["per_core"], cj["per_core"]);
   const RunResult bad = RunKdrt(common + " --list-stream 2 -o " + Path("b.png"));
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_FALSE(fs::exists(Path("b.png")));
