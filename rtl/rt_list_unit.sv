@@ -18,7 +18,7 @@ module rt_list_unit #(
   parameter int unsigned Jobs = 32,
   parameter int unsigned CountWidth = 25,
   parameter int unsigned AddrWidth = 28,
-  parameter int unsigned ListStream = 0,
+  parameter int unsigned ListStream = 1,
   parameter int unsigned LineBytes = 32,
   localparam int unsigned ReqCountW = kdrt_pkg::list_count_bits(LineBytes)
 ) (

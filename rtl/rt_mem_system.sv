@@ -40,7 +40,7 @@ module rt_mem_system #(
   // fp16 and bf16): record id % 2 of line id / 2 is the line's lower or upper half.
   parameter int unsigned TriPerLine = 1,
   // 1: a list request names the entries of one line (list_req_count_i).
-  parameter int unsigned ListStream = 0,
+  parameter int unsigned ListStream = 1,
   localparam int unsigned TriBits = 128 * TriLineBeats / TriPerLine,
   localparam int unsigned ListCountW = kdrt_pkg::list_count_bits(16 * ListLineBeats)
 ) (

@@ -102,11 +102,11 @@ for file in "$RTL"/*.sv; do
       lint_format_pairs "$top" "$file" "$name" "$e" "$m" Img narrower
     done
   fi
-  # The streaming list path (ListStream 1; the default is 0) of the list
-  # unit, the memory side and the core.
+  # The list path of one request per entry (ListStream 0; the default is
+  # the streaming 1) of the list unit, the memory side and the core.
   case "$top" in
     rt_list_unit|rt_mem_system|rt_core)
-      lint "$top" "ListStream=1" "${srcs[@]}" -y "$RTL" "$file" -GListStream=1 ;;
+      lint "$top" "ListStream=0" "${srcs[@]}" -y "$RTL" "$file" -GListStream=0 ;;
   esac
   # rt_cache's sets and pseudo-LRU exist only with Ways > 1 (the default is 1).
   if [ "$top" = rt_cache ]; then

@@ -163,11 +163,11 @@ void CheckConfigCovers(const CoreConfig& c, const SceneRequirements& req, uint64
 ConfigChoice ChooseConfig(fp::Format format, const SceneRequirements& req, const ConfigOverrides& ov,
                           uint64_t mem_size, bool allow_overflow) {
   for (int i = 0; i < kParamCount; ++i) {
-    if (ov.value[i]) CheckOverride(kCoreParams[i], ov.value[i]);
+    if (ov.Has(i)) CheckOverride(kCoreParams[i], ov.value[i]);
   }
   auto apply = [&](CoreConfig c) {
     for (int i = 0; i < kParamCount; ++i) {
-      if (ov.value[i]) c.value[i] = ov.value[i];
+      if (ov.Has(i)) c.value[i] = ov.value[i];
     }
     return c;
   };

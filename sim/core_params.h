@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -97,9 +98,14 @@ SceneRequirements DeriveRequirements(const ImageView& image);
 // Number of bits to represent every value in 0..max_value (at least 1).
 int BitsFor(uint64_t max_value);
 
-// Parameters the user asked for on the command line; 0 means "not given".
+// Parameters the user asked for on the command line.
 struct ConfigOverrides {
-  std::array<int, kParamCount> value{};
+  // Not given on the command line (a value no parameter can take: ListStream
+  // may be overridden with 0).
+  static constexpr int kUnset = std::numeric_limits<int>::min();
+  ConfigOverrides() { value.fill(kUnset); }
+  bool Has(int i) const { return value[i] != kUnset; }
+  std::array<int, kParamCount> value;
 };
 
 struct ConfigChoice {

@@ -41,6 +41,7 @@ struct SimArgs {
   std::string rays;
   std::string camera;
   sim::RunOptions run;
+  bool ray_order_given = false;  // --ray-order on the command line (else: morton for a frame, a ray file's own)
   sim::ConfigOverrides overrides;
   bool quiet = false;
   bool strict = false;
@@ -107,6 +108,7 @@ int RunSim(SimArgs args) {
   }
   const RaySet ray_set = MakeRays(p.scene, args.rays, args.camera, args.res);
   CheckShadingArgs(args.shading, ray_set);
+  if (!args.rays.empty() && !args.ray_order_given) args.run.ray_order = "linear";  // a file has no frame
   if (args.run.ray_order != "linear") {
     if (!args.rays.empty()) {
       throw InputError("--ray-order " + args.run.ray_order +
@@ -248,7 +250,11 @@ Runner AddSimCommand(CLI::App& app) {
                   "--image-format); default: --format");
   cmd->add_option("--rays", args->rays, "Trace this ray file (KDRTRAYS) instead of the camera");
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
+  // The camera's rays enter the core in Z-order unless told otherwise
+  // (session 23; the model binaries' own default stays the ray list's order).
+  args->run.ray_order = "morton";
   sim::AddRunOptions(*cmd, args->run);
+  cmd->get_option("--ray-order")->each([args](const std::string&) { args->ray_order_given = true; });
   sim::AddParamOptions(*cmd, args->overrides);
   AddShadingOptions(*cmd, args->shading);
   cmd->add_flag("-q,--quiet", args->quiet, "No report on stdout");

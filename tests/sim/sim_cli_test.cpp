@@ -410,18 +410,20 @@ TEST_F(SimCli, AssociativeCaches) {
   EXPECT_FALSE(fs::exists(Path("b.png")));
 }
 
-// --ray-order morton issues the camera's rays along the Z-order curve
-// (sim/ray_queue.h): the RTL still returns the reference's record for every
-// ray (the hit buffer is the linear run's, pixel for pixel), the fast model
-// follows it cycle for cycle on one core and on several, the report says
-// which order ran, and a ray file, which has no frame, is refused.
+// --ray-order morton (the default since session 23) issues the camera's
+// rays along the Z-order curve (sim/ray_queue.h): the RTL still returns the
+// reference's record for every ray (the hit buffer is the linear run's,
+// pixel for pixel), the fast model follows it cycle for cycle on one core and
+// on several, the report says which order ran, and a ray file, which has no
+// frame, runs in its own order by default and is refused with an explicit
+// --ray-order morton.
 TEST_F(SimCli, MortonRayOrder) {
   const std::string common = "sim gen:tree:2000 --res 24x20 -q";
-  const RunResult lin = RunKdrt(common + " --model fast -o " + Path("l.png") + " --hits " + Path("l.exr") +
-                                " --json " + Path("l.json"));
+  const RunResult lin = RunKdrt(common + " --ray-order linear --model fast -o " + Path("l.png") + " --hits " +
+                                Path("l.exr") + " --json " + Path("l.json"));
   ASSERT_EQ(lin.exit_code, 0) << lin.output;
-  const RunResult r = RunKdrt(common + " --ray-order morton --model both -o " + Path("m.png") + " --hits " +
-                              Path("m.exr") + " --json " + Path("m.json"));
+  const RunResult r = RunKdrt(common + " --model both -o " + Path("m.png") + " --hits " + Path("m.exr") +
+                              " --json " + Path("m.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectSameHitBuffers(Path("l.exr"), Path("m.exr"));
   const nlohmann::json j = ReadJson(Path("m.json"));
@@ -445,25 +447,30 @@ TEST_F(SimCli, MortonRayOrder) {
   ExpectFastEqualsRtl(cj);
 
   const std::string rays = Path("x.rays");
-  WriteRaysFile(rays, {Ray{{0, 0, -5}, {0, 0, 1}, 0, 100}});
+  WriteRaysFile(rays, {Ray{{0, 0, -5}, {0, 0, 1}, 0, 100}, Ray{{0.1f, 0, -5}, {0, 0, 1}, 0, 100}});
+  const RunResult own = RunKdrt("sim gen:tree:2000 --rays " + rays + " --model fast -q -o " + Path("f.png") +
+                                " --json " + Path("f.json"));
+  ASSERT_EQ(own.exit_code, 0) << own.output;
+  EXPECT_EQ(ReadJson(Path("f.json"))["ray_order"], "linear");
   const RunResult bad = RunKdrt("sim gen:tree:2000 --rays " + rays + " --ray-order morton -o " + Path("b.png"));
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.output.find("a ray file (--rays) is issued in its own order"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(Path("b.png")));
 }
 
-// ListStream 1 (rt_list_unit, rt_mem_system): the list unit asks for a
-// leaf's entries a list line at a time and a line register hands them on
-// one a cycle. The RTL still returns the reference's record for every ray
-// (the same hit buffer as the default core), the fast model follows it
+// ListStream 1 (the default since session 23; rt_list_unit,
+// rt_mem_system): the list unit asks for a leaf's entries a list line at a
+// time and a line register hands them on one a cycle. The RTL still returns
+// the reference's record for every ray (the same hit buffer as the core of
+// one request per entry, --list-stream 0), the fast model follows it
 // cycle for cycle, on one core and on two, with two triangle records a line
 // (fp16), and the list cache sees fewer requests than there are entries.
 TEST_F(SimCli, ListStreamMatchesTheFastModel) {
   const std::string common = "sim gen:gears:1500 --res 24x24 --format fp16 -q";
-  const RunResult d = RunKdrt(common + " --model fast -o " + Path("d.png") + " --hits " + Path("d.exr") +
+  const RunResult d = RunKdrt(common + " --list-stream 0 --model fast -o " + Path("d.png") + " --hits " + Path("d.exr") +
                               " --json " + Path("d.json"));
   ASSERT_EQ(d.exit_code, 0) << d.output;
-  const RunResult r = RunKdrt(common + " --list-stream 1 --model both -o " + Path("s.png") + " --hits " +
+  const RunResult r = RunKdrt(common + " --model both -o " + Path("s.png") + " --hits " +
                               Path("s.exr") + " --json " + Path("s.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectSameHitBuffers(Path("d.exr"), Path("s.exr"));
@@ -480,7 +487,7 @@ TEST_F(SimCli, ListStreamMatchesTheFastModel) {
   EXPECT_EQ(requests(j, "tri"), requests(dj, "tri"));
   EXPECT_EQ(requests(dj, "list"), requests(dj, "tri"));
   EXPECT_LT(requests(j, "list"), requests(j, "tri"));
-  const RunResult c = RunKdrt(common + " --list-stream 1 --cores 2 --ray-chunk 16 --model both -o " + Path("c.png") +
+  const RunResult c = RunKdrt(common + " --cores 2 --ray-chunk 16 --model both -o " + Path("c.png") +
                               " --json " + Path("c.json"));
   ASSERT_EQ(c.exit_code, 0) << c.output;
   const nlohmann::json cj = ReadJson(Path("c.json"));
