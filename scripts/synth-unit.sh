@@ -9,14 +9,27 @@
 # (written beside it, then renamed), so concurrent readers never see half a
 # file. On failure: exit status 1, the end of the Yosys log on stderr, no
 # OUT_JSON.
-# Usage: scripts/synth-unit.sh UNIT E M OUT_JSON [NAME=VALUE...]   (E M "- -":
-#        the unit's default parameters; NAME=VALUE: more parameters, e.g.
-#        TravE=8 TravM=23, listed in the JSON's "params"; YOSYS=path to use
-#        another yosys)
+# Usage: scripts/synth-unit.sh [--sram] UNIT E M OUT_JSON [NAME=VALUE...]
+#        (E M "- -": the unit's default parameters; NAME=VALUE: more
+#        parameters, e.g. TravE=8 TravM=23, listed in the JSON's "params";
+#        YOSYS=path to use another yosys)
+# --sram: the caches' line arrays (rt_cache's data_q: one write port, one
+#        read port registered inside the array, as an SRAM macro reads) are
+#        kept as memories instead of being built from flip-flops and
+#        multiplexers; "cells", "flip_flops" and "depth" are then the logic
+#        around them, and the JSON adds "sram_bits" and "srams" (name, words,
+#        width of each). Every other memory (tags, stacks: read in the cycle
+#        they are addressed) is still flip-flops. The macros' own area is not
+#        a Yosys figure: docs/synth-table.md says how it is estimated.
 set -euo pipefail
 
+sram=0
+if [ "${1:-}" = --sram ]; then
+  sram=1
+  shift
+fi
 if [ "$#" -lt 4 ]; then
-  echo "usage: $0 UNIT E M OUT_JSON [NAME=VALUE...]   (E M: '- -' for the unit's defaults)" >&2
+  echo "usage: $0 [--sram] UNIT E M OUT_JSON [NAME=VALUE...]   (E M: '- -' for the unit's defaults)" >&2
   exit 2
 fi
 unit="$1" e="$2" m="$3" out="$4"
@@ -49,10 +62,29 @@ log="$WORK/yosys.log"
 chp=""
 if [ "$e" != - ]; then chp="chparam -set E $e -set M $m$extra_set $unit";
 elif [ -n "$extra_set" ]; then chp="chparam$extra_set $unit"; fi
+# The synthesis: Yosys' generic `synth`, or with --sram the same script with
+# the line arrays left out of its memory_map step (Yosys 0.23's fine stage
+# otherwise: opt, techmap, abc).
+if [ "$sram" = 1 ]; then
+  lines='t:$mem_v2 n:*data_q %i'
+  flow="synth -flatten -top $unit -run begin:fine
+    opt -fast -full
+    memory_map $lines %n
+    opt -full
+    techmap
+    opt -fast
+    abc -fast
+    opt -fast
+    hierarchy -check
+    check
+    tee -q -o $WORK/unit.mem dump t:\$mem_v2"
+else
+  flow="synth -flatten -top $unit"
+fi
 if ! "$YOSYS" -q -l "$log" -p "
     read_verilog -sv $RTL/kdrt_fp_pkg.sv $RTL/kdrt_pkg.sv $(ls $RTL/*.sv | grep -v _pkg.sv | tr '\n' ' ')
     $chp
-    synth -flatten -top $unit
+    $flow
     select -assert-none t:\$*latch* t:\$_DLATCH* t:\$_SR_* t:\$sr
     tee -o $WORK/unit.stat stat
     tee -o $WORK/unit.ltp ltp -noff
@@ -64,6 +96,32 @@ fi
 
 # (grep finds nothing for a unit without flip-flops: not an error.)
 cells=$({ grep -m1 -E 'Number of cells:' "$WORK/unit.stat" || true; } | awk '{print $NF}')
+sram_json=""
+if [ "$sram" = 1 ]; then
+  # Each kept array: its name, words and width, and a check that it is what
+  # an SRAM macro can be (every read port registered, one write port).
+  srams=$(awk '
+    /^ *cell \$mem_v2 / { name = ""; words = 0; width = 0; rclk = ""; wr = 0 }
+    /parameter .MEMID / { name = $3; gsub(/["\\]/, "", name) }
+    /parameter .SIZE / { words = $3 }
+    /parameter .WIDTH / { width = $3 }
+    /parameter .RD_CLK_ENABLE / { rclk = $3 }
+    /parameter .WR_PORTS / { wr = $3 }
+    /^ *end$/ && name != "" {
+      sync = (rclk ~ /^[0-9]+.[1]+$/) && wr == 1
+      printf "%s %d %d %d\n", name, words, width, sync; name = "" }
+  ' "$WORK/unit.mem")
+  if echo "$srams" | awk 'NF && $4 != 1 { bad = 1 } END { exit !bad }'; then
+    echo "synth-unit: $unit: a line array is not an SRAM macro (an unregistered read or more than one write port):" >&2
+    echo "$srams" >&2
+    exit 1
+  fi
+  macros=$(echo "$srams" | awk 'NF { n++ } END { print n + 0 }')
+  bits=$(echo "$srams" | awk 'NF { s += $2 * $3 } END { print s + 0 }')
+  list=$(echo "$srams" | awk 'NF { printf "%s{\"name\": \"%s\", \"words\": %d, \"width\": %d}", sep, $1, $2, $3; sep = ", " }')
+  cells=$((cells - macros))
+  sram_json=", \"sram_bits\": $bits, \"srams\": [$list]"
+fi
 ffs=$({ grep -E '\$_[A-Z]*DFF[A-Z0-9]*_' "$WORK/unit.stat" || true; } | awk '{s += $NF} END {print s + 0}')
 depth=$({ grep -m1 -o 'length=[0-9]*' "$WORK/unit.ltp" || true; } | cut -d= -f2)
 if [ -z "$cells" ] || [ -z "$depth" ]; then
@@ -78,6 +136,6 @@ mkdir -p "$(dirname "$out")"
 tmp="$(mktemp "$out.tmp.XXXXXX")"
 params=""
 if [ -n "$extra_json" ]; then params=", \"params\": {$extra_json}"; fi
-printf '{"unit": "%s", "E": %s, "M": %s, "cells": %s, "flip_flops": %s, "depth": %s%s}\n' \
-  "$unit" "$json_e" "$json_m" "$cells" "$ffs" "$depth" "$params" > "$tmp"
+printf '{"unit": "%s", "E": %s, "M": %s, "cells": %s, "flip_flops": %s, "depth": %s%s%s}\n' \
+  "$unit" "$json_e" "$json_m" "$cells" "$ffs" "$depth" "$params" "$sram_json" > "$tmp"
 mv -f "$tmp" "$out"

@@ -44,14 +44,21 @@ std::vector<uint32_t> IssueOrder(const std::string& name, uint32_t width, size_t
     throw InputError("--ray-order morton: the rays must be whole rows of a frame (" + std::to_string(count) +
                      " rays, width " + std::to_string(width) + ")");
   }
-  std::vector<std::pair<uint64_t, uint32_t>> keyed(count);
-  for (size_t i = 0; i < count; ++i) {
-    const auto x = static_cast<uint32_t>(i % width), y = static_cast<uint32_t>(i / width);
+  std::vector<uint32_t> pixel(count);  // ray i is pixel i of the frame
+  for (size_t i = 0; i < count; ++i) pixel[i] = static_cast<uint32_t>(i);
+  return PixelIssueOrder(pixel, width);
+}
+
+std::vector<uint32_t> PixelIssueOrder(const std::vector<uint32_t>& pixel, uint32_t width) {
+  if (width == 0) throw InputError("--ray-order morton: a pass's rays need the frame's width");
+  std::vector<std::pair<uint64_t, uint32_t>> keyed(pixel.size());
+  for (size_t i = 0; i < pixel.size(); ++i) {
+    const uint32_t x = pixel[i] % width, y = pixel[i] / width;
     keyed[i] = {SpreadBits(x) | SpreadBits(y) << 1, static_cast<uint32_t>(i)};
   }
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<uint32_t> order(count);
-  for (size_t i = 0; i < count; ++i) order[i] = keyed[i].second;
+  std::sort(keyed.begin(), keyed.end());  // ties (one pixel's rays) by list position
+  std::vector<uint32_t> order(pixel.size());
+  for (size_t i = 0; i < pixel.size(); ++i) order[i] = keyed[i].second;
   return order;
 }
 

@@ -40,4 +40,11 @@ class RayQueue {
 // whole rows.
 std::vector<uint32_t> IssueOrder(const std::string& name, uint32_t width, size_t count);
 
+// The order of a secondary pass's rays (`kdrt sim --shade`) under
+// --ray-order morton: by the Z-order of the pixel each ray comes from
+// (`pixel[i]`: ray i's row-major pixel in a frame `width` wide), the rays of
+// one pixel in their list order. Position -> ray index; throws InputError for
+// a width of 0.
+std::vector<uint32_t> PixelIssueOrder(const std::vector<uint32_t>& pixel, uint32_t width);
+
 }  // namespace kdrt::sim

@@ -20,6 +20,7 @@
 #include "setup/shaded_frame.h"
 #include "setup/trace_outputs.h"
 #include "sim/model_runner.h"
+#include "sim/ray_queue.h"
 #include "sim/run_options.h"
 #include "sim/sim_report.h"
 #include "tools/commands.h"
@@ -176,7 +177,11 @@ int RunSim(SimArgs args) {
   ShadedFrame frame;
   if (args.shading.On()) {
     sim::RunOptions pass_run = args.run;
-    pass_run.ray_order = "linear";  // a pass's rays are a list of the frame's hits, not a frame
+    // A pass's rays are a list of the frame's hits, not a frame: in Z-order
+    // they are issued by their pixels' Z-order (the model sees them sorted,
+    // and its hits are put back in the pass's order).
+    const bool by_pixel = args.run.ray_order == "morton";
+    pass_run.ray_order = "linear";
     pass_run.trace.clear();
     pass_run.trace_ray = -1;
     const PassTracer trace = [&](const RayPass& pass, nlohmann::json* stats) {
@@ -185,13 +190,34 @@ int RunSim(SimArgs args) {
            CheckPrecision(image, pass.rays, format, args.strict, 0, pass.name, image_format).warnings) {
         report["warnings"].push_back(w);
       }
-      sim::ModelRun r = run_model(pass.rays, pass_run, "", pass.query);
-      if (r.exit_code != 0) throw PassFailed{r.exit_code};
+      std::vector<uint32_t> order;
+      std::vector<Ray> rays;
+      if (by_pixel) {
+        order = sim::PixelIssueOrder(pass.pixel, static_cast<uint32_t>(ray_set.width));
+        rays.reserve(order.size());
+        for (uint32_t i : order) rays.push_back(pass.rays[i]);
+      }
+      sim::ModelRun r = run_model(by_pixel ? rays : pass.rays, pass_run, "", pass.query);
+      if (r.exit_code != 0) {
+        if (by_pixel) {
+          std::fprintf(stderr,
+                       "kdrt sim: the %s pass issued its rays by their pixels' Z-order: a ray number above is a "
+                       "position in that order (--ray-order linear keeps the pass's own order)\n",
+                       pass.name.c_str());
+        }
+        throw PassFailed{r.exit_code};
+      }
       *stats = std::move(r.report);
-      return std::move(r.hits);
+      (*stats)["ray_order"] = by_pixel ? "morton by pixel" : "linear";
+      if (!by_pixel) return std::move(r.hits);
+      std::vector<Hit> hits(r.hits.size());
+      for (size_t k = 0; k < order.size(); ++k) hits[order[k]] = r.hits[k];
+      return hits;
     };
     try {
-      frame = TraceShadedFrame(p.scene, args.shading.options, ray_set.rays, run.hits, run.report, trace);
+      nlohmann::json primary = run.report;
+      primary["ray_order"] = args.run.ray_order;
+      frame = TraceShadedFrame(p.scene, args.shading.options, ray_set.rays, run.hits, primary, trace);
     } catch (const PassFailed& f) {
       return f.exit_code;
     }

@@ -43,7 +43,8 @@ FormatResult Trace(const PreparedScene& p, const RaySet& rays, const fp::Format&
 }
 
 // Runs the RTL core on every stride-th ray and checks its records against the
-// reference tracer's in the same format, as `kdrt sim` does.
+// reference tracer's in the same format, as `kdrt sim` does (a whole frame in
+// Z-order, as `kdrt sim`'s default; a subsample in its order).
 SimNumbers Simulate(const PreparedScene& p, const RaySet& rays, uint64_t stride, const FormatResult& r,
                     bool progress) {
   std::vector<Ray> sub;
@@ -54,6 +55,10 @@ SimNumbers Simulate(const PreparedScene& p, const RaySet& rays, uint64_t stride,
   }
   sim::RunOptions run;
   run.progress = progress;  // the model's own progress line
+  if (stride == 1) {  // the whole frame: in Z-order, as kdrt sim issues a camera's rays
+    run.ray_order = "morton";
+    run.frame_width = static_cast<uint32_t>(rays.width);
+  }
   const sim::ModelRun m = sim::Simulate(p.image, sub, r.format, run);
   if (m.exit_code != 0) {
     throw InputError("the RTL core failed in " + r.format.Name() + " (kdrt sim exit " + std::to_string(m.exit_code) +

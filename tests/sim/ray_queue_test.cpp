@@ -57,6 +57,25 @@ TEST(IssueOrder, RefusesWhatIsNotAFrame) {
   EXPECT_THROW(IssueOrder("spiral", 4, 16), InputError);
 }
 
+// A secondary pass's rays by their pixels' Z-order: every ray once, the
+// pixels in the frame's Z-order, and one pixel's rays (a shadow ray per
+// light, AO samples) together in their list order.
+TEST(PixelIssueOrder, SortsRaysByTheirPixelsZOrder) {
+  const uint32_t width = 4;
+  // Pixels of a 4x4 frame, some twice, some not at all (missed rays cast none).
+  const std::vector<uint32_t> pixel = {15, 0, 5, 4, 4, 1, 10, 0};
+  const std::vector<uint32_t> order = PixelIssueOrder(pixel, width);
+  EXPECT_EQ(order, (std::vector<uint32_t>{1, 7, 5, 3, 4, 2, 6, 0}));
+  const std::vector<uint32_t> frame = IssueOrder("morton", width, 16);
+  std::vector<uint32_t> rank(16);
+  for (uint32_t k = 0; k < 16; ++k) rank[frame[k]] = k;
+  for (size_t k = 1; k < order.size(); ++k) {
+    EXPECT_LE(rank[pixel[order[k - 1]]], rank[pixel[order[k]]]) << k;
+  }
+  EXPECT_TRUE(PixelIssueOrder({}, width).empty());
+  EXPECT_THROW(PixelIssueOrder(pixel, 0), InputError);
+}
+
 // The queue hands out the order's ids, a chunk of positions per core.
 TEST(RayQueue, HandsOutTheIssueOrderInChunks) {
   const std::vector<uint32_t> order = {3, 1, 0, 2, 5, 4};

@@ -211,6 +211,10 @@ TEST_P(ShadedFrameMatchesRender, ImageAndRaySetsAreIdentical) {
     EXPECT_EQ(p["rays"], rj["passes"][k]["rays"]);
     EXPECT_EQ(p["hits"], rj["passes"][k]["hits"]);
     EXPECT_EQ(p["stats"]["perf_counts"]["ray_out"], p["rays"]);
+    // The default Z-order issues a pass's rays by their pixels (the image
+    // and ray sets above are still the reference's: the hits go back in
+    // the pass's order).
+    EXPECT_EQ(p["stats"]["ray_order"], k == 0 ? "morton" : "morton by pixel");
     EXPECT_GE(p["stats"]["cycles_per_ray"].get<double>(), p["stats"]["bound_cycles_per_ray"].get<double>());
     ExpectConsistentBreakdown(p["stats"]);
     rays += p["rays"].get<uint64_t>();
