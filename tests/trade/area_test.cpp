@@ -298,3 +298,35 @@ TEST_F(AreaTest, SynthesizesAMissingFormatOnDemand) {
 
 }  // namespace
 }  // namespace kdrt::trade
+
+namespace kdrt::trade {
+namespace {
+
+// scripts/synth-unit.sh --sram on a small cache: the line array (Lines x
+// 256 bits, written once, read through its registered port) is kept as one
+// SRAM macro and listed with its size, and the logic around it has fewer
+// cells and at least the array's bits fewer flip-flops than the same cache
+// synthesized from flip-flops.
+TEST(SynthUnit, SramKeepsTheCacheLinesAsAMacro) {
+  const fs::path dir = fs::temp_directory_path() / ("kdrt_sram_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string params = " Lines=4 Ways=1 Mshrs=1 KeyWidth=8 AddrWidth=12 TagWidth=2";
+  const std::string script = kSource + "/scripts/synth-unit.sh";
+  const std::string flops = (dir / "flops.json").string(), sram = (dir / "sram.json").string();
+  ASSERT_EQ(std::system((script + " rt_cache - - " + flops + params).c_str()), 0);
+  ASSERT_EQ(std::system((script + " --sram rt_cache - - " + sram + params).c_str()), 0);
+  const std::string f = ReadText(flops), s = ReadText(sram);
+  const auto number = [](const std::string& json, const std::string& key) {
+    const size_t at = json.find("\"" + key + "\": ");
+    return at == std::string::npos ? -1LL : std::stoll(json.substr(at + key.size() + 4));
+  };
+  EXPECT_EQ(f.find("sram_bits"), std::string::npos) << f;
+  EXPECT_EQ(number(s, "sram_bits"), 4 * 256) << s;
+  EXPECT_NE(s.find("\"srams\": [{\"name\": \"data_q\", \"words\": 4, \"width\": 256}]"), std::string::npos) << s;
+  EXPECT_LT(number(s, "cells"), number(f, "cells"));
+  EXPECT_LE(number(s, "flip_flops"), number(f, "flip_flops") - 4 * 256);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace kdrt::trade
