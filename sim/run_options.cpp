@@ -32,8 +32,8 @@ void AddRunOptions(CLI::App& cmd, RunOptions& o) {
       ->capture_default_str();
   cmd.add_option("--ray-order", o.ray_order,
                  "Order the camera's rays enter the core: linear (row by row) or morton (along the Z-order "
-                 "curve over the image, so the rays in flight are neighbours in 2D); a ray file is issued in "
-                 "its own order")
+                 "curve over the image, so the rays in flight are neighbours in 2D; --shade's passes by their "
+                 "pixels); a ray file is issued in its own order")
       ->check(CLI::IsMember({"linear", "morton"}))
       ->capture_default_str();
   // Hidden: the frame's width for --ray-order morton (the front end passes
