@@ -106,12 +106,10 @@ module rt_cache #(
   logic [Mshrs-1:0]           mshr_valid_q;
   logic [Mshrs*KeyWidth-1:0]  mshr_key_q;
   logic [Mshrs*AddrWidth-1:0] mshr_addr_q;
-  logic [Mshrs*Targets*TagWidth-1:0] mshr_tgt_q;  // the requests to answer, in order
   logic [Mshrs*TgtW-1:0]      mshr_cnt_q;    // requests joined
   logic [Mshrs*TgtW-1:0]      mshr_out_q;    // requests answered
   logic [Mshrs*CntW-1:0]      mshr_sent_q;   // beats requested so far
   logic [Mshrs*LineBeats-1:0] mshr_got_q;    // beats received
-  logic [Mshrs*LineBits-1:0]  mshr_data_q;
 
   // Two response registers, one for hits and one for completed misses, so a
   // hit is taken while a miss is being answered; the response port shows the
@@ -186,10 +184,44 @@ module rt_cache #(
   logic [TagWidth-1:0] m_tag;
 
   assign done_key = mshr_key_q[KeyWidth*done_idx +: KeyWidth];
-  assign done_data = mshr_data_q[LineBits*done_idx +: LineBits];
+  // Each miss register's line buffer is a register per beat, written when
+  // its beat arrives (a decoded enable each, not a write at a computed
+  // offset into one wide vector, whose shifter Yosys builds across all of
+  // it); the completed line leaves through a multiplexer on done_idx.
+  logic [MshrW-1:0]    resp_mshr;
+  logic [BeatW-1:0]    resp_beat;
+  assign {resp_mshr, resp_beat} = mem_resp_id_i;
+  logic [LineBits-1:0] mshr_line [Mshrs];
+  for (genvar m = 0; m < Mshrs; m++) begin : g_mshr_line
+    for (genvar b = 0; b < LineBeats; b++) begin : g_beat
+      logic [127:0] beat_q;
+      always_ff @(posedge clk_i) begin
+        if (mem_resp_valid_i && resp_mshr == MshrW'(m) && resp_beat == BeatW'(b)) beat_q <= mem_resp_data_i;
+      end
+      assign mshr_line[m][128*b +: 128] = beat_q;
+    end
+  end
+  assign done_data = mshr_line[done_idx];
+  // The requests each miss register answers, in order: a register per
+  // target, written (decoded enable) by the miss taken this cycle, at slot 0
+  // of a free register or after the targets of the one it joins.
+  logic [MshrW-1:0]            tgt_wr_mshr;
+  logic [TgtW-1:0]             tgt_wr_slot;
+  logic [Targets*TagWidth-1:0] mshr_tgts [Mshrs];
+  logic [Targets*TagWidth-1:0] done_tgts;
+  for (genvar m = 0; m < Mshrs; m++) begin : g_mshr_tgt
+    for (genvar t = 0; t < Targets; t++) begin : g_tgt
+      logic [TagWidth-1:0] tag_q;
+      always_ff @(posedge clk_i) begin
+        if (m_take && tgt_wr_mshr == MshrW'(m) && tgt_wr_slot == TgtW'(t)) tag_q <= m_tag;
+      end
+      assign mshr_tgts[m][TagWidth*t +: TagWidth] = tag_q;
+    end
+  end
+  assign done_tgts = mshr_tgts[done_idx];
   assign done_cnt = mshr_cnt_q[TgtW*done_idx +: TgtW];
   assign done_out = mshr_out_q[TgtW*done_idx +: TgtW];
-  assign done_tag = mshr_tgt_q[TagWidth*(Targets*32'(done_idx) + 32'(done_out)) +: TagWidth];
+  assign done_tag = done_tgts[TagWidth*done_out +: TagWidth];
   assign done_last = done_out + 1'b1 == done_cnt;
 
   // Sets is a power of two: a key's set is its low bits. Line set * Ways + w
@@ -290,6 +322,8 @@ module rt_cache #(
   assign m_key = accept2 ? req2_key_i : req_key_i;
   assign m_addr = accept2 ? req2_addr_i : req_addr_i;
   assign m_tag = accept2 ? req2_tag_i : req_tag_i;
+  assign tgt_wr_mshr = m_join ? m_join_idx : free_idx;
+  assign tgt_wr_slot = m_join ? m_join_cnt : '0;
 
   assign filling_o = |mshr_valid_q;
   assign hit_o = accept && lookup_hit;
@@ -324,10 +358,6 @@ module rt_cache #(
   assign mem_req_addr_o = mshr_addr_q[AddrWidth*send_idx +: AddrWidth] +
                           AddrWidth'(send_beat) * AddrWidth'(16);
   assign mem_req_id_o = {send_idx, send_beat[BeatW-1:0]};
-
-  logic [MshrW-1:0] resp_mshr;
-  logic [BeatW-1:0] resp_beat;
-  assign {resp_mshr, resp_beat} = mem_resp_id_i;
 
   assign resp_valid_o = hit_valid_q || del_valid_q;
   assign resp_data_o = del_valid_q ? del_data_q : hit_data_q;
@@ -380,16 +410,10 @@ module rt_cache #(
       hit_tag_q <= req_tag_i;
     end
     if (m_take) begin
-      if (m_join) begin
-        mshr_tgt_q[TagWidth*(Targets*32'(m_join_idx) + 32'(m_join_cnt)) +: TagWidth] <= m_tag;
-      end else begin
+      if (!m_join) begin
         mshr_key_q[KeyWidth*free_idx +: KeyWidth] <= m_key;
         mshr_addr_q[AddrWidth*free_idx +: AddrWidth] <= m_addr;
-        mshr_tgt_q[TagWidth*Targets*32'(free_idx) +: TagWidth] <= m_tag;
       end
-    end
-    if (mem_resp_valid_i) begin
-      mshr_data_q[LineBits*resp_mshr + 128*resp_beat +: 128] <= mem_resp_data_i;
     end
     if (deliver) begin
       data_q[done_line] <= done_data;
