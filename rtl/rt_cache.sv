@@ -184,44 +184,37 @@ module rt_cache #(
   logic [TagWidth-1:0] m_tag;
 
   assign done_key = mshr_key_q[KeyWidth*done_idx +: KeyWidth];
-  // Each miss register's line buffer is a register per beat, written when
-  // its beat arrives (a decoded enable each, not a write at a computed
-  // offset into one wide vector, whose shifter Yosys builds across all of
-  // it); the completed line leaves through a multiplexer on done_idx.
+  // The miss registers' line buffers and their merged requests are arrays of
+  // words (a beat; a request) written at one index a cycle and read at the
+  // completed register's: Yosys maps each to registers with a decoded write
+  // enable per word and a read multiplexer (a write at a computed offset
+  // into one wide vector instead builds shifters across all of it), and the
+  // simulation writes one word.
+  localparam int unsigned BeatWords = Mshrs * LineBeats;
+  localparam int unsigned TgtWords = Mshrs * Targets;
+  localparam int unsigned BeatIdxW = (BeatWords > 1) ? $clog2(BeatWords) : 1;
+  localparam int unsigned TgtIdxW = (TgtWords > 1) ? $clog2(TgtWords) : 1;
   logic [MshrW-1:0]    resp_mshr;
   logic [BeatW-1:0]    resp_beat;
   assign {resp_mshr, resp_beat} = mem_resp_id_i;
-  logic [LineBits-1:0] mshr_line [Mshrs];
-  for (genvar m = 0; m < Mshrs; m++) begin : g_mshr_line
-    for (genvar b = 0; b < LineBeats; b++) begin : g_beat
-      logic [127:0] beat_q;
-      always_ff @(posedge clk_i) begin
-        if (mem_resp_valid_i && resp_mshr == MshrW'(m) && resp_beat == BeatW'(b)) beat_q <= mem_resp_data_i;
-      end
-      assign mshr_line[m][128*b +: 128] = beat_q;
-    end
+  logic [127:0]        mshr_beat_q [BeatWords];
+  logic [BeatIdxW-1:0] beat_wr_idx;
+  assign beat_wr_idx = BeatIdxW'(32'(resp_mshr) * LineBeats + 32'(resp_beat));
+  for (genvar b = 0; b < LineBeats; b++) begin : g_done_beat
+    assign done_data[128*b +: 128] = mshr_beat_q[BeatIdxW'(32'(done_idx) * LineBeats + b)];
   end
-  assign done_data = mshr_line[done_idx];
-  // The requests each miss register answers, in order: a register per
-  // target, written (decoded enable) by the miss taken this cycle, at slot 0
-  // of a free register or after the targets of the one it joins.
-  logic [MshrW-1:0]            tgt_wr_mshr;
-  logic [TgtW-1:0]             tgt_wr_slot;
-  logic [Targets*TagWidth-1:0] mshr_tgts [Mshrs];
-  logic [Targets*TagWidth-1:0] done_tgts;
-  for (genvar m = 0; m < Mshrs; m++) begin : g_mshr_tgt
-    for (genvar t = 0; t < Targets; t++) begin : g_tgt
-      logic [TagWidth-1:0] tag_q;
-      always_ff @(posedge clk_i) begin
-        if (m_take && tgt_wr_mshr == MshrW'(m) && tgt_wr_slot == TgtW'(t)) tag_q <= m_tag;
-      end
-      assign mshr_tgts[m][TagWidth*t +: TagWidth] = tag_q;
-    end
-  end
-  assign done_tgts = mshr_tgts[done_idx];
+  logic [TagWidth-1:0] mshr_tgt_q [TgtWords];
+  logic [TgtIdxW-1:0]  tgt_wr_idx;
+  // A miss taken this cycle is a free register's first request or joins
+  // after the requests of the register it joins.
+  logic [MshrW-1:0] tgt_wr_mshr;
+  logic [TgtW-1:0]  tgt_wr_slot;
+  assign tgt_wr_mshr = m_join ? m_join_idx : free_idx;
+  assign tgt_wr_slot = m_join ? m_join_cnt : '0;
+  assign tgt_wr_idx = TgtIdxW'(32'(tgt_wr_mshr) * Targets + 32'(tgt_wr_slot));
+  assign done_tag = mshr_tgt_q[TgtIdxW'(32'(done_idx) * Targets + 32'(done_out))];
   assign done_cnt = mshr_cnt_q[TgtW*done_idx +: TgtW];
   assign done_out = mshr_out_q[TgtW*done_idx +: TgtW];
-  assign done_tag = done_tgts[TagWidth*done_out +: TagWidth];
   assign done_last = done_out + 1'b1 == done_cnt;
 
   // Sets is a power of two: a key's set is its low bits. Line set * Ways + w
@@ -322,8 +315,6 @@ module rt_cache #(
   assign m_key = accept2 ? req2_key_i : req_key_i;
   assign m_addr = accept2 ? req2_addr_i : req_addr_i;
   assign m_tag = accept2 ? req2_tag_i : req_tag_i;
-  assign tgt_wr_mshr = m_join ? m_join_idx : free_idx;
-  assign tgt_wr_slot = m_join ? m_join_cnt : '0;
 
   assign filling_o = |mshr_valid_q;
   assign hit_o = accept && lookup_hit;
@@ -409,6 +400,8 @@ module rt_cache #(
       hit_data_q <= data_q[hit_line];
       hit_tag_q <= req_tag_i;
     end
+    if (mem_resp_valid_i) mshr_beat_q[beat_wr_idx] <= mem_resp_data_i;
+    if (m_take) mshr_tgt_q[tgt_wr_idx] <= m_tag;
     if (m_take) begin
       if (!m_join) begin
         mshr_key_q[KeyWidth*free_idx +: KeyWidth] <= m_key;

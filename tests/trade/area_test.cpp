@@ -135,7 +135,7 @@ TEST_F(AreaTest, PresetsSumTheTableRows) {
   };
   EXPECT_EQ(unit("rt_isect_unit").cells, 152355);
   EXPECT_EQ(unit("rt_isect_unit").format, "fp32");
-  EXPECT_EQ(unit("rt_mem_system").flip_flops, 82692);
+  EXPECT_EQ(unit("rt_mem_system").flip_flops, 82436);
   EXPECT_EQ(unit("rt_mem_system").format, "defaults");
   EXPECT_EQ(fp32.depth, 95);  // rt_leaf_exit (docs/synth-table.md)
   EXPECT_FALSE(fs::exists(options_.cache_dir)) << "a table hit must not synthesize or write the cache";
