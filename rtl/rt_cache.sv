@@ -401,8 +401,8 @@ module rt_cache #(
       hit_tag_q <= req_tag_i;
     end
     if (mem_resp_valid_i) mshr_beat_q[beat_wr_idx] <= mem_resp_data_i;
-    if (m_take) mshr_tgt_q[tgt_wr_idx] <= m_tag;
     if (m_take) begin
+      mshr_tgt_q[tgt_wr_idx] <= m_tag;
       if (!m_join) begin
         mshr_key_q[KeyWidth*free_idx +: KeyWidth] <= m_key;
         mshr_addr_q[AddrWidth*free_idx +: AddrWidth] <= m_addr;
