@@ -12,7 +12,8 @@
 # Usage: scripts/synth-unit.sh [--sram] UNIT E M OUT_JSON [NAME=VALUE...]
 #        (E M "- -": the unit's default parameters; NAME=VALUE: more
 #        parameters, e.g. TravE=8 TravM=23, listed in the JSON's "params";
-#        YOSYS=path to use another yosys)
+#        YOSYS=path to use another yosys; LTP_OUT=path to keep Yosys' longest
+#        path, the nets from start to end, as `ltp -noff` prints it)
 # --sram: the caches' line arrays (rt_cache's data_q: one write port, one
 #        read port registered inside the array, as an SRAM macro reads) are
 #        kept as memories instead of being built from flip-flops and
@@ -140,3 +141,4 @@ if [ -n "$extra_json" ]; then params=", \"params\": {$extra_json}"; fi
 printf '{"unit": "%s", "E": %s, "M": %s, "cells": %s, "flip_flops": %s, "depth": %s%s%s}\n' \
   "$unit" "$json_e" "$json_m" "$cells" "$ffs" "$depth" "$params" "$sram_json" > "$tmp"
 mv -f "$tmp" "$out"
+if [ -n "${LTP_OUT:-}" ]; then cp "$WORK/unit.ltp" "$LTP_OUT"; fi
