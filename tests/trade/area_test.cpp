@@ -302,7 +302,8 @@ TEST_F(AreaTest, SynthesizesAMissingFormatOnDemand) {
 namespace kdrt::trade {
 namespace {
 
-// scripts/synth-unit.sh --sram on a small cache: the line array (Lines x
+// scripts/synth-unit.sh --sram on a small cache (and LTP_OUT on the first
+// run): the line array (Lines x
 // 256 bits, written once, read through its registered port) is kept as one
 // SRAM macro and listed with its size, and the logic around it has fewer
 // cells and at least the array's bits fewer flip-flops than the same cache
@@ -313,13 +314,18 @@ TEST(SynthUnit, SramKeepsTheCacheLinesAsAMacro) {
   const std::string params = " Lines=4 Ways=1 Mshrs=1 KeyWidth=8 AddrWidth=12 TagWidth=2";
   const std::string script = kSource + "/scripts/synth-unit.sh";
   const std::string flops = (dir / "flops.json").string(), sram = (dir / "sram.json").string();
-  ASSERT_EQ(std::system((script + " rt_cache - - " + flops + params).c_str()), 0);
+  const std::string ltp = (dir / "flops.ltp").string();
+  ASSERT_EQ(std::system(("LTP_OUT=" + ltp + " " + script + " rt_cache - - " + flops + params).c_str()), 0);
   ASSERT_EQ(std::system((script + " --sram rt_cache - - " + sram + params).c_str()), 0);
   const std::string f = ReadText(flops), s = ReadText(sram);
   const auto number = [](const std::string& json, const std::string& key) {
     const size_t at = json.find("\"" + key + "\": ");
     return at == std::string::npos ? -1LL : std::stoll(json.substr(at + key.size() + 4));
   };
+  // LTP_OUT keeps the path whose length is the JSON's depth.
+  const std::string path = ReadText(ltp);
+  EXPECT_NE(path.find("Longest topological path"), std::string::npos) << path;
+  EXPECT_NE(path.find("(length=" + std::to_string(number(f, "depth")) + ")"), std::string::npos) << path;
   EXPECT_EQ(f.find("sram_bits"), std::string::npos) << f;
   EXPECT_EQ(number(s, "sram_bits"), 4 * 256) << s;
   EXPECT_NE(s.find("\"srams\": [{\"name\": \"data_q\", \"words\": 4, \"width\": 256}]"), std::string::npos) << s;
