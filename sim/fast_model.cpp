@@ -940,10 +940,12 @@ class Progress {
 
 }  // namespace
 
-RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals) {
+RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals,
+                        std::vector<RayCounters>* reference_per_ray) {
   FastReference ref;
-  const RayPaths paths = TraceReference(spec, &ref, false);
+  const RayPaths paths = TraceReference(spec, &ref, reference_per_ray != nullptr);
   if (reference_totals) *reference_totals = ref.totals;
+  if (reference_per_ray) *reference_per_ray = std::move(ref.per_ray);
   // The memory's timing only: the model reads no data, so the memory holds
   // no image (a beat reads zeros, and costs no cache miss on the host). The
   // image must fit all the same, as for the RTL.

@@ -41,9 +41,11 @@ struct FastSpec {
 };
 
 // One core straight on the memory (the fast model of RunVerilator). The
-// reference's hits are in result.hits; throws std::runtime_error on a
-// timeout.
-RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals);
+// reference's hits are in result.hits, its counters in `reference_totals`
+// and (when not null) each ray's in `reference_per_ray`; throws
+// std::runtime_error on a timeout.
+RunOutcome RunFastModel(const FastSpec& spec, RayCounters* reference_totals,
+                        std::vector<RayCounters>* reference_per_ray = nullptr);
 
 // What the reference traversal gave every ray of a run of several cores:
 // the hits (the records the cores return), and each ray's counters (a

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -22,12 +23,29 @@ struct ReportInputs {
   SceneRequirements requirements;
   MemoryConfig memory;
   RayCounters reference_totals;  // TraceRays over every ray
+  // WindowBoundCycles over the rays in issue order, `window_rays` at a time
+  // (the rays in flight: threads x cores); 0: not reported.
+  double window_bound_cycles = 0;
+  uint64_t window_rays = 0;
   const RunOutcome* run = nullptr;
   uint64_t rays = 0;
   Query query = Query::kClosest;
 };
 
 nlohmann::json ReportJson(const ReportInputs& in);
+
+// The per-core bound (one traversal step and one triangle test a cycle)
+// taken `window` rays at a time: the sum over consecutive windows of rays in
+// issue order (`order`, or the rays' own when null or empty) of max(nodes, tests),
+// in cycles. Where the mix of nodes and tests changes across the frame, a
+// core that holds a window's rays cannot overlap one unit's work on them
+// with the other unit's on rays far ahead, so this is above the whole
+// run's max(nodes, tests) (equal when `window` covers every ray). An
+// estimate of what the rays in flight allow, not a bound: the rays in
+// flight are not aligned to the windows, and a slow ray stays while later
+// ones pass.
+double WindowBoundCycles(const std::vector<RayCounters>& per_ray, const std::vector<uint32_t>* order,
+                         uint64_t window);
 
 // The report of several cores (kdrt sim --cores N): `in` describes the whole
 // run (in.run unused); the unit, cache and thread figures are averages over

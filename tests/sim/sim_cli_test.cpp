@@ -279,6 +279,9 @@ TEST_F(SimCli, SeveralCoresShareTheL2) {
   EXPECT_LE(j4["memory"]["bytes_read"].get<uint64_t>(), 16 * j4["l2"]["requests"].get<uint64_t>());
   EXPECT_GT(j4["rays_per_cycle"].get<double>(), 1.5 * j1["rays_per_cycle"].get<double>());
   EXPECT_GE(j4["cycles_per_ray"].get<double>(), j4["bound_cycles_per_ray"].get<double>());
+  // The rays in flight are the four cores' threads.
+  EXPECT_EQ(j4["window_bound"]["rays"].get<uint64_t>(), 4 * j1["window_bound"]["rays"].get<uint64_t>());
+  EXPECT_GE(j4["window_bound"]["cycles_per_ray"].get<double>(), j4["bound_cycles_per_ray"].get<double>());
   ExpectConsistentBreakdown(j4);
 }
 
@@ -301,6 +304,12 @@ void ExpectFastEqualsRtl(const nlohmann::json& j) {
   EXPECT_EQ(f["thread_states"], j["thread_states"]);
   EXPECT_EQ(f["memory"]["bytes_read"], j["memory"]["bytes_read"]);
   EXPECT_EQ(f["max_rays_in_flight"], j["max_rays_in_flight"]);
+  // The bound of the rays in flight: the same rays in the same order, and
+  // never below the whole run's.
+  EXPECT_EQ(f["window_bound"], j["window_bound"]);
+  EXPECT_GT(j["window_bound"]["rays"].get<uint64_t>(), 0u);
+  EXPECT_GE(j["window_bound"]["cycles_per_ray"].get<double>(), j["bound_cycles_per_ray"].get<double>());
+  EXPECT_LE(j["window_bound"]["cycles_per_ray"].get<double>(), j["cycles_per_ray"].get<double>() * 1.5);
   EXPECT_EQ(f.contains("per_core"), j.contains("per_core"));
   if (j.contains("per_core")) {
     EXPECT_EQ(f["per_core"], j["per_core"]);
