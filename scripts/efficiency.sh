@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The core's efficiency (issue 13): for each scene and memory latency, `kdrt
-# sim` cycles per ray against the per-core bound, the stall breakdown, the
+# sim` cycles per ray against the per-core bound and the window bound (the
+# same taken the rays in flight at a time), the stall breakdown, the
 # cache hit rates, the misses in flight and (when the core reports them) the
 # waits per cache, the unit stalls and the thread-state histogram. Prints a
 # Markdown table, and with JSONL=FILE appends each run's JSON to FILE.
@@ -15,8 +16,8 @@ shift $(($# < 3 ? $# : 3))
 read_scenes "gen:room:10000 gen:balls:10000 gen:rings:10000 gen:tetra:10000 gen:tree:10000 gen:gears:10000" "$@"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "| scene | latency | cycles/ray | bound | efficiency | stall mem / stack / backpressure | node / list / tri hit | max misses out | waits node / list / tri (in flight, no MSHR) | threads fetch / wait node / trav / leaf / exit / other |"
-echo "|---|---:|---:|---:|---:|---|---|---:|---|---|"
+echo "| scene | latency | cycles/ray | bound | efficiency | window bound (efficiency) | stall mem / stack / backpressure | node / list / tri hit | max misses out | waits node / list / tri (in flight, no MSHR) | threads fetch / wait node / trav / leaf / exit / other |"
+echo "|---|---:|---:|---:|---:|---:|---|---|---:|---|---|"
 for scene in "${scenes[@]}"; do
   for lat in $lats; do
     echo "efficiency: $scene latency $lat ${extra[*]:-}" >&2
@@ -39,8 +40,10 @@ if "thread_states" in a:
     t = a["thread_states"]
     other = 1 - sum(t[k] for k in ("fetch", "wait_node", "trav", "leaf", "exit"))
     threads = " / ".join(pc(x) for x in (t["fetch"], t["wait_node"], t["trav"], t["leaf"], t["exit"], other))
-print("| %s | %s | %.2f | %.2f | %s | %s / %s / %s | %s / %s / %s | %d | %s | %s |" % (
-    scene, lat, a["cycles_per_ray"], a["bound_cycles_per_ray"], pc(a["efficiency"]), pc(s["memory"]),
+w = a.get("window_bound")
+window = "%.2f (%s)" % (w["cycles_per_ray"], pc(w["efficiency"])) if w and w["rays"] else "–"
+print("| %s | %s | %.2f | %.2f | %s | %s | %s / %s / %s | %s / %s / %s | %d | %s | %s |" % (
+    scene, lat, a["cycles_per_ray"], a["bound_cycles_per_ray"], pc(a["efficiency"]), window, pc(s["memory"]),
     pc(s["stack"]), pc(s["backpressure"]), pc(c["node"]), pc(c["list"]), pc(c["tri"]),
     a["memory"]["max_outstanding"], waits, threads))
 PY
