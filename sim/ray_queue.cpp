@@ -37,16 +37,44 @@ uint64_t SpreadBits(uint32_t x) {
 
 }  // namespace
 
+int MortonStreams(const std::string& name) {
+  if (name == "linear") return 0;
+  if (name == "morton") return 1;
+  const std::string prefix = "morton:";
+  if (name.compare(0, prefix.size(), prefix) == 0) {
+    const std::string k = name.substr(prefix.size());
+    if (!k.empty() && k.size() <= 3 && std::all_of(k.begin(), k.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      const int streams = std::stoi(k);
+      if (streams >= 1 && streams <= 256) return streams;
+    }
+    throw InputError("--ray-order " + name + ": the streams K of morton:K must be a number from 1 to 256");
+  }
+  throw InputError("--ray-order " + name + ": expected linear, morton or morton:K (K streams, 1 to 256)");
+}
+
+std::vector<uint32_t> InterleaveStreams(const std::vector<uint32_t>& order, int streams) {
+  if (streams <= 1) return order;
+  const size_t n = order.size(), run = (n + streams - 1) / streams;
+  std::vector<uint32_t> out;
+  out.reserve(n);
+  for (size_t i = 0; i < run; ++i) {
+    for (size_t s = 0; s < static_cast<size_t>(streams); ++s) {
+      if (s * run + i < n) out.push_back(order[s * run + i]);
+    }
+  }
+  return out;
+}
+
 std::vector<uint32_t> IssueOrder(const std::string& name, uint32_t width, size_t count) {
-  if (name == "linear") return {};
-  if (name != "morton") throw InputError("--ray-order " + name + ": expected linear or morton");
+  const int streams = MortonStreams(name);
+  if (streams == 0) return {};
   if (width == 0 || count % width != 0) {
-    throw InputError("--ray-order morton: the rays must be whole rows of a frame (" + std::to_string(count) +
+    throw InputError("--ray-order " + name + ": the rays must be whole rows of a frame (" + std::to_string(count) +
                      " rays, width " + std::to_string(width) + ")");
   }
   std::vector<uint32_t> pixel(count);  // ray i is pixel i of the frame
   for (size_t i = 0; i < count; ++i) pixel[i] = static_cast<uint32_t>(i);
-  return PixelIssueOrder(pixel, width);
+  return InterleaveStreams(PixelIssueOrder(pixel, width), streams);
 }
 
 std::vector<uint32_t> PixelIssueOrder(const std::vector<uint32_t>& pixel, uint32_t width) {

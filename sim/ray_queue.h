@@ -38,7 +38,23 @@ class RayQueue {
 // rays in flight together are neighbours in 2D (tiles of 2x2, 4x4, ...).
 // Throws InputError for another name, a width of 0 or a count that is not
 // whole rows.
+// "morton:K" (K from 1 to 256; "morton" is "morton:1") cuts the Z-order
+// into K runs of consecutive rays (the frame's K regions along the curve)
+// and issues one ray of each in turn (InterleaveStreams), so the rays in
+// flight come from K regions at once: where regions alternate between
+// traversal-heavy and test-heavy work, both units then have work
+// (docs/simulator.md, "Ray order"), at the cost of K working sets in the
+// caches.
 std::vector<uint32_t> IssueOrder(const std::string& name, uint32_t width, size_t count);
+
+// The streams of an order name: 0 for "linear", K for "morton" (1) and
+// "morton:K"; throws InputError for anything else.
+int MortonStreams(const std::string& name);
+
+// `order` cut into `streams` runs of ceil(n / streams) positions (the last
+// shorter), then position i of run 0, of run 1, ..., of the last run, and
+// i + 1 of each: a permutation of `order`; `streams` <= 1 returns it as is.
+std::vector<uint32_t> InterleaveStreams(const std::vector<uint32_t>& order, int streams);
 
 // The order of a secondary pass's rays (`kdrt sim --shade`) under
 // --ray-order morton: by the Z-order of the pixel each ray comes from

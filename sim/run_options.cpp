@@ -2,9 +2,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <exception>
+#include <string>
 
 #include "common/error.h"
 #include "sim/memory_model.h"
+#include "sim/ray_queue.h"
 
 namespace kdrt::sim {
 
@@ -31,10 +34,20 @@ void AddRunOptions(CLI::App& cmd, RunOptions& o) {
   cmd.add_option("--ray-chunk", o.ray_chunk, "With --cores: consecutive rays a core takes from the queue at once")
       ->capture_default_str();
   cmd.add_option("--ray-order", o.ray_order,
-                 "Order the camera's rays enter the core: linear (row by row) or morton (along the Z-order "
+                 "Order the camera's rays enter the core: linear (row by row), morton (along the Z-order "
                  "curve over the image, so the rays in flight are neighbours in 2D; --shade's passes by their "
-                 "pixels); a ray file is issued in its own order")
-      ->check(CLI::IsMember({"linear", "morton"}))
+                 "pixels) or morton:K (the Z-order cut into K runs, one ray of each in turn: the rays in flight "
+                 "come from K regions; K from 1 to 256); a ray file is issued in its own order")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            try {
+              MortonStreams(v);
+            } catch (const std::exception& e) {
+              return std::string(e.what());
+            }
+            return std::string();
+          },
+          "linear|morton|morton:K"))
       ->capture_default_str();
   // Hidden: the frame's width for --ray-order morton (the front end passes
   // its camera's to the model).

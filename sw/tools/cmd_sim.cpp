@@ -180,7 +180,8 @@ int RunSim(SimArgs args) {
     // A pass's rays are a list of the frame's hits, not a frame: in Z-order
     // they are issued by their pixels' Z-order (the model sees them sorted,
     // and its hits are put back in the pass's order).
-    const bool by_pixel = args.run.ray_order == "morton";
+    const int streams = sim::MortonStreams(args.run.ray_order);
+    const bool by_pixel = streams > 0;
     pass_run.ray_order = "linear";
     pass_run.trace.clear();
     pass_run.trace_ray = -1;
@@ -193,7 +194,8 @@ int RunSim(SimArgs args) {
       std::vector<uint32_t> order;
       std::vector<Ray> rays;
       if (by_pixel) {
-        order = sim::PixelIssueOrder(pass.pixel, static_cast<uint32_t>(ray_set.width));
+        order = sim::InterleaveStreams(sim::PixelIssueOrder(pass.pixel, static_cast<uint32_t>(ray_set.width)),
+                                       streams);
         rays.reserve(order.size());
         for (uint32_t i : order) rays.push_back(pass.rays[i]);
       }
@@ -208,7 +210,7 @@ int RunSim(SimArgs args) {
         throw PassFailed{r.exit_code};
       }
       *stats = std::move(r.report);
-      (*stats)["ray_order"] = by_pixel ? "morton by pixel" : "linear";
+      (*stats)["ray_order"] = by_pixel ? args.run.ray_order + " by pixel" : "linear";
       if (!by_pixel) return std::move(r.hits);
       std::vector<Hit> hits(r.hits.size());
       for (size_t k = 0; k < order.size(); ++k) hits[order[k]] = r.hits[k];

@@ -57,6 +57,34 @@ TEST(IssueOrder, RefusesWhatIsNotAFrame) {
   EXPECT_THROW(IssueOrder("spiral", 4, 16), InputError);
 }
 
+// morton:K: the Z-order cut into K runs, one ray of each in turn; every
+// ray once, and morton:1 is morton.
+TEST(IssueOrder, MortonStreamsInterleaveRunsOfTheZOrder) {
+  const std::vector<uint32_t> z = IssueOrder("morton", 24, 24 * 20);
+  EXPECT_EQ(IssueOrder("morton:1", 24, 24 * 20), z);
+  const std::vector<uint32_t> four = IssueOrder("morton:4", 24, 24 * 20);
+  ASSERT_EQ(four.size(), z.size());
+  const size_t run = z.size() / 4;  // 120
+  for (size_t i = 0; i < run; ++i) {
+    for (size_t s = 0; s < 4; ++s) ASSERT_EQ(four[4 * i + s], z[s * run + i]) << i << " " << s;
+  }
+  // Seven runs of a list of 10: runs of 2, the last one empty.
+  const std::vector<uint32_t> ten = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  EXPECT_EQ(InterleaveStreams(ten, 7), (std::vector<uint32_t>{0, 2, 4, 6, 8, 1, 3, 5, 7, 9}));
+  EXPECT_EQ(InterleaveStreams(ten, 3), (std::vector<uint32_t>{0, 4, 8, 1, 5, 9, 2, 6, 3, 7}));
+  EXPECT_EQ(InterleaveStreams(ten, 1), ten);
+  EXPECT_EQ(InterleaveStreams(ten, 20), ten);  // runs of one ray: the list's own order
+  std::vector<uint32_t> sorted = IssueOrder("morton:256", 24, 24 * 20);
+  std::sort(sorted.begin(), sorted.end());
+  for (uint32_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], i);
+  EXPECT_EQ(MortonStreams("linear"), 0);
+  EXPECT_EQ(MortonStreams("morton"), 1);
+  EXPECT_EQ(MortonStreams("morton:16"), 16);
+  for (const char* bad : {"morton:0", "morton:257", "morton:", "morton:x", "morton:-1", "morton:4x", "morton4"}) {
+    EXPECT_THROW(MortonStreams(bad), InputError) << bad;
+  }
+}
+
 // A secondary pass's rays by their pixels' Z-order: every ray once, the
 // pixels in the frame's Z-order, and one pixel's rays (a shadow ray per
 // light, AO samples) together in their list order.

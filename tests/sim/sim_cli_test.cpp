@@ -458,6 +458,21 @@ TEST_F(SimCli, MortonRayOrder) {
   const nlohmann::json cj = ReadJson(Path("c.json"));
   ASSERT_TRUE(cj.contains("per_core"));
   ExpectFastEqualsRtl(cj);
+  // K interleaved runs of the Z-order: the same records, the fast model
+  // still cycle for cycle, and another order than morton's.
+  const RunResult k = RunKdrt(common + " --ray-order morton:4 --model both -o " + Path("k.png") + " --hits " +
+                              Path("k.exr") + " --json " + Path("k.json"));
+  ASSERT_EQ(k.exit_code, 0) << k.output;
+  ExpectSameHitBuffers(Path("l.exr"), Path("k.exr"));
+  const nlohmann::json kj = ReadJson(Path("k.json"));
+  EXPECT_EQ(kj["ray_order"], "morton:4");
+  ExpectFastEqualsRtl(kj);
+  EXPECT_EQ(kj["reference_per_ray"], lj["reference_per_ray"]);
+  EXPECT_NE(kj["cycles"], j["cycles"]);
+  const RunResult bad_k = RunKdrt(common + " --ray-order morton:0 --model fast -o " + Path("bk.png"));
+  EXPECT_NE(bad_k.exit_code, 0);
+  EXPECT_NE(bad_k.output.find("morton:K must be a number from 1 to 256"), std::string::npos) << bad_k.output;
+  EXPECT_FALSE(fs::exists(Path("bk.png")));
 
   const std::string rays = Path("x.rays");
   WriteRaysFile(rays, {Ray{{0, 0, -5}, {0, 0, 1}, 0, 100}, Ray{{0.1f, 0, -5}, {0, 0, 1}, 0, 100}});
