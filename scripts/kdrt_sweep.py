@@ -19,6 +19,7 @@ import hashlib
 import itertools
 import json
 import os
+import re
 import subprocess
 import sys
 import time
@@ -45,7 +46,8 @@ PARAMS = {
 }
 SPEC_KEYS = {"scenes", "formats", "res", "params", "model", "shade", "allow_overflow"}
 # What each point reports, from `kdrt sim --json`.
-RESULTS = ["rays", "cycles", "cycles_per_ray", "bound_cycles_per_ray", "efficiency", "rays_per_cycle", "overflows",
+RESULTS = ["rays", "cycles", "cycles_per_ray", "bound_cycles_per_ray", "efficiency", "window_bound_cycles_per_ray",
+           "rays_per_cycle", "overflows",
            "bytes_per_ray", "node_hit_rate", "tri_hit_rate", "sim_seconds",
            "fast_cycles_per_ray", "fast_error", "fast_speedup"]  # the last three: model both
 
@@ -197,6 +199,8 @@ def row_of(point, names, report):
         "cycles_per_ray": frame["cycles_per_ray"] if frame else report["cycles_per_ray"],
         "bound_cycles_per_ray": frame["bound_cycles_per_ray"] if frame else report["bound_cycles_per_ray"],
         "efficiency": frame["efficiency"] if frame else report["efficiency"],
+        # The bound of the rays in flight (kdrt sim's window bound; not summed over a shaded frame's passes).
+        "window_bound_cycles_per_ray": None if frame else report.get("window_bound", {}).get("cycles_per_ray"),
         "rays_per_cycle": report["rays_per_cycle"],
         "overflows": report.get("overflows", 0),
         "bytes_per_ray": mem.get("bytes_per_ray"),
@@ -211,11 +215,12 @@ def row_of(point, names, report):
 
 
 def value_key(v):
-    """Numbers in numeric order, before other values."""
+    """Numbers in numeric order, before other values; those in natural order (morton:2 before morton:16)."""
     try:
-        return (0, float(v), "")
+        return (0, float(v), [])
     except (TypeError, ValueError):
-        return (1, 0.0, str(v))
+        parts = re.split(r"(\d+)", str(v))
+        return (1, 0.0, [(0, int(p), "") if p.isdigit() else (1, 0, p) for p in parts])
 
 
 def plot(path, title, xs_label, series, y_label="cycles per ray"):
