@@ -225,6 +225,22 @@ TEST_P(ShadedFrameMatchesRender, ImageAndRaySetsAreIdentical) {
   EXPECT_EQ(j["frame"]["rays"].get<uint64_t>(), rays);
   EXPECT_EQ(j["frame"]["cycles"].get<uint64_t>(), cycles);
 
+  // Three interleaved runs of the Z-order, in every pass: the same image
+  // and ray sets, in other cycles.
+  const RunResult k = RunKdrt("sim " + common + " --ray-order morton:3 -q -o " + Path("k.png") + " --json " +
+                              Path("k.json") + " --write-rays " + Path("k_rays"));
+  ASSERT_EQ(k.exit_code, 0) << k.output;
+  EXPECT_EQ(ReadBytes(Path("render.png")), ReadBytes(Path("k.png")));
+  for (const char* pass : {"primary", "shadow", "ao", "bounce"}) {
+    const std::string name = std::string(pass) + ".rays";
+    EXPECT_EQ(ReadBytes(Path("render_rays/" + name)), ReadBytes(Path("k_rays/" + name))) << name;
+  }
+  const nlohmann::json kj = ReadJson(Path("k.json"));
+  ASSERT_EQ(kj["passes"].size(), 4u);
+  EXPECT_EQ(kj["passes"][0]["stats"]["ray_order"], "morton:3");
+  EXPECT_EQ(kj["passes"][1]["stats"]["ray_order"], "morton:3 by pixel");
+  EXPECT_NE(kj["frame"]["cycles"], j["frame"]["cycles"]);
+
   // A written shadow-ray file is an any-hit set for both tracers.
   const std::string file = " --format " + std::string(GetParam()) + " --rays " + Path("render_rays/shadow.rays");
   ASSERT_EQ(RunKdrt("render gen:room:600" + file + " -q --hits " + Path("r_shadow.exr")).exit_code, 0);
