@@ -9,7 +9,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -236,7 +235,6 @@ ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, co
   ri.memory = spec.memory;
   ri.rays = rays.size();
   ri.query = query;
-  ri.window_rays = static_cast<uint64_t>(config[kThreads]) * std::max(1, run.cores);
   ModelRun out;
   if (run.cores > 0) {
     // Several cores behind the shared L2, as the SystemC system model runs
@@ -248,13 +246,13 @@ ModelRun RunFast(const CoreConfig& config, const std::vector<uint8_t>& image, co
     FastReference ref;
     const SystemOutcome sys = RunFastCores(spec, run.cores, l2, run.ray_chunk, &ref);
     ri.reference_totals = ref.totals;
-    ri.window_bound_cycles = WindowBoundCycles(ref.per_ray, &order, ri.window_rays);
+    SetWindowBound(ref.per_ray, &order, config[kThreads], run.cores, &ri);
     out.report = SystemReportJson(ri, sys, ref.per_ray);
     out.hits = std::move(ref.hits);
   } else {
     std::vector<RayCounters> per_ray;
     RunOutcome outcome = RunFastModel(spec, &ri.reference_totals, &per_ray);
-    ri.window_bound_cycles = WindowBoundCycles(per_ray, &order, ri.window_rays);
+    SetWindowBound(per_ray, &order, config[kThreads], run.cores, &ri);
     ri.run = &outcome;
     out.report = ReportJson(ri);
     out.hits = std::move(outcome.result.hits);

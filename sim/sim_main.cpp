@@ -4,7 +4,6 @@
 // ray file, traces the reference hits itself (the model of its own format),
 // runs the core ray by ray against them, and writes the RTL's hit records and
 // the report of the run. It never loads a scene (docs/simulator.md).
-#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -124,8 +123,7 @@ int Run(const ModelArgs& args) {
   ri.requirements = req;
   ri.memory = spec.memory;
   ri.reference_totals = ts.totals;
-  ri.window_rays = static_cast<uint64_t>(config[kThreads]) * std::max(1, args.run.cores);
-  ri.window_bound_cycles = WindowBoundCycles(per_ray, &order, ri.window_rays);
+  SetWindowBound(per_ray, &order, config[kThreads], args.run.cores, &ri);
   ri.rays = rays.size();
   ri.query = query;
 

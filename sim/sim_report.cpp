@@ -182,8 +182,6 @@ nlohmann::json SystemReportJson(const ReportInputs& in, const SystemOutcome& sys
     one.run = &co;
     one.rays = c.result.ray_ids.size();
     one.reference_totals = RayCounters{};
-    one.window_bound_cycles = 0;
-    one.window_rays = 0;
     for (uint32_t id : c.result.ray_ids) one.reference_totals += per_ray[id];
     const nlohmann::json cj = ReportJson(one);
     cores.push_back({{"rays", cj["rays"]},
@@ -228,6 +226,12 @@ double WindowBoundCycles(const std::vector<RayCounters>& per_ray, const std::vec
     }
   }
   return total;
+}
+
+void SetWindowBound(const std::vector<RayCounters>& per_ray, const std::vector<uint32_t>* order, int threads,
+                    int cores, ReportInputs* in) {
+  in->window_rays = static_cast<uint64_t>(threads) * static_cast<uint64_t>(std::max(1, cores));
+  in->window_bound_cycles = WindowBoundCycles(per_ray, order, in->window_rays);
 }
 
 void AddScene(const SceneFacts& f, nlohmann::json* report) {

@@ -47,6 +47,12 @@ nlohmann::json ReportJson(const ReportInputs& in);
 double WindowBoundCycles(const std::vector<RayCounters>& per_ray, const std::vector<uint32_t>* order,
                          uint64_t window);
 
+// The report's window bound: the rays in flight (`threads` x `cores`, one
+// core when `cores` is 0, as `kdrt sim --cores`) and WindowBoundCycles over
+// them, into `in`. The one definition the RTL harness and the fast model share.
+void SetWindowBound(const std::vector<RayCounters>& per_ray, const std::vector<uint32_t>* order, int threads,
+                    int cores, ReportInputs* in);
+
 // The report of several cores (kdrt sim --cores N): `in` describes the whole
 // run (in.run unused); the unit, cache and thread figures are averages over
 // the cores (counts summed, divided by N x cycles), cycles are the system's
