@@ -257,13 +257,21 @@ module rt_cache #(
   assign lookup_hit = |hit_ways;
   assign lookup2_hit = |hit2_ways;
 
-  // The pseudo-LRU tree of each set. Node n at level l of way w's path is
-  // w >> (WayW - l); the way the bits point at is the one whose every path
-  // node agrees with its bit of the way number.
+  // The pseudo-LRU tree of each set, one word per set: read at the
+  // request's and the completed miss's sets and written there (a hit taken,
+  // then a fill, which sees the hit's bits when both are in one set). Node n
+  // at level l of way w's path is w >> (WayW - l); the way the bits point at
+  // is the one whose every path node agrees with its bit of the way number.
+  // (Per-set words, not one vector with per-bit logic for every set: the
+  // simulation then updates two words a cycle, not every set's bits.)
   if (Ways > 1) begin : g_plru
-    logic [Sets*PlruW-1:0] plru_q, plru_d;
-    logic [PlruW-1:0]      done_plru;
-    assign done_plru = plru_q[PlruW*32'(done_set) +: PlruW];
+    logic [PlruW-1:0] plru_q [Sets];
+    logic [PlruW-1:0] hit_plru, hit_new, fill_base, fill_new, done_plru;
+    logic             hit_taken;
+    assign hit_taken = accept && lookup_hit;
+    assign hit_plru = plru_q[req_set];
+    assign done_plru = plru_q[done_set];
+    assign fill_base = (hit_taken && req_set == done_set) ? hit_new : done_plru;
     for (genvar w = 0; w < Ways; w++) begin : g_points
       logic [WayW-1:0] agree;
       for (genvar l = 0; l < WayW; l++) begin : g_level
@@ -271,21 +279,20 @@ module rt_cache #(
       end
       assign points[w] = &agree;
     end
-    for (genvar s = 0; s < Sets; s++) begin : g_set
-      for (genvar l = 0; l < WayW; l++) begin : g_level
-        for (genvar n = 0; n < (1 << l); n++) begin : g_node
-          localparam int unsigned Bit = PlruW * s + (1 << l) - 1 + n;
-          logic on_hit, on_fill, after_hit;
-          assign on_hit = accept && lookup_hit && req_set == SetW'(s) && (32'(hit_way) >> (WayW - l)) == n;
-          assign on_fill = deliver && done_set == SetW'(s) && (32'(fill_way) >> (WayW - l)) == n;
-          assign after_hit = on_hit ? !hit_way[WayW - 1 - l] : plru_q[Bit];
-          assign plru_d[Bit] = on_fill ? !fill_way[WayW - 1 - l] : after_hit;
-        end
+    for (genvar l = 0; l < WayW; l++) begin : g_level
+      for (genvar n = 0; n < (1 << l); n++) begin : g_node
+        localparam int unsigned Bit = (1 << l) - 1 + n;
+        assign hit_new[Bit] = (32'(hit_way) >> (WayW - l)) == n ? !hit_way[WayW - 1 - l] : hit_plru[Bit];
+        assign fill_new[Bit] = (32'(fill_way) >> (WayW - l)) == n ? !fill_way[WayW - 1 - l] : fill_base[Bit];
       end
     end
     always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) plru_q <= '0;
-      else plru_q <= plru_d;
+      if (!rst_ni) begin
+        for (int s = 0; s < Sets; s++) plru_q[s] <= '0;
+      end else begin
+        if (hit_taken) plru_q[req_set] <= hit_new;
+        if (deliver) plru_q[done_set] <= fill_new;
+      end
     end
   end else begin : g_direct
     assign points = 1'b1;
