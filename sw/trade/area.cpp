@@ -39,10 +39,16 @@ const char* const kFixedUnits[] = {"rt_list_unit", "rt_mem_system", "rt_thread_f
 const char* const kTablePath = "docs/synth-table.md";
 const char* const kScriptPath = "scripts/synth-unit.sh";
 
+// The units whose caches' line arrays are synthesized as SRAM macros
+// (synth-unit.sh --sram; scripts/synth.sh's SRAM_UNITS): their cells are the
+// logic around the arrays, and the arrays' bits are counted apart.
+bool KeepsSram(const std::string& unit) { return unit == "rt_mem_system"; }
+
 struct Numbers {
   int64_t cells = 0;
   int64_t flip_flops = 0;
   int depth = 0;
+  int64_t sram_bits = 0;
 };
 
 // One unit at one format; plain units (no E and M) have their defaults.
@@ -104,7 +110,7 @@ std::vector<TableRow> ReadSynthTable(const std::string& path) {
     std::stringstream ss(line.substr(1));
     std::string col;
     while (std::getline(ss, col, '|')) cols.push_back(Trim(col));
-    // | unit | preset | latency | cells | flip-flops | depth |
+    // | unit | preset | latency | cells | flip-flops | depth | SRAM bits |
     if (cols.size() < 6 || cols[0] == "unit" || cols[0].rfind("---", 0) == 0) continue;
     const auto cells = ParseCount(cols[3]), ffs = ParseCount(cols[4]), depth = ParseCount(cols[5]);
     if (!cells || !ffs || !depth) {
@@ -125,7 +131,12 @@ std::vector<TableRow> ReadSynthTable(const std::string& path) {
       row.key.e = f.e;
       row.key.m = f.m;
     }
-    row.n = {*cells, *ffs, static_cast<int>(*depth)};
+    row.n = {*cells, *ffs, static_cast<int>(*depth), 0};
+    if (cols.size() >= 7 && !cols[6].empty()) {
+      const auto bits = ParseCount(cols[6]);
+      if (!bits) throw InputError(path, lineno, "expected a number of SRAM bits, not '" + cols[6] + "'");
+      row.n.sram_bits = *bits;
+    }
     rows.push_back(row);
   }
   return rows;
@@ -158,7 +169,11 @@ std::optional<Numbers> ReadCached(const std::string& path, const UnitKey& key) {
                   : (j.at("E").get<int>() != key.e || j.at("M").get<int>() != key.m)) {
       return std::nullopt;
     }
-    return Numbers{j.at("cells").get<int64_t>(), j.at("flip_flops").get<int64_t>(), j.at("depth").get<int>()};
+    // A unit that keeps SRAM must have been synthesized so (an older
+    // cache file without the bits is stale).
+    if (KeepsSram(key.unit) && !j.contains("sram_bits")) return std::nullopt;
+    return Numbers{j.at("cells").get<int64_t>(), j.at("flip_flops").get<int64_t>(), j.at("depth").get<int>(),
+                   j.value("sram_bits", int64_t{0})};
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;
   }
@@ -338,7 +353,9 @@ void Synthesize(const std::vector<Job>& jobs, const std::string& script, const A
       const std::string m = job.key.plain ? "-" : std::to_string(job.key.m);
       int rc;
       try {
-        rc = RunScript(bash, {script, job.key.unit, e, m, job.json}, job.log);
+        std::vector<std::string> args = {script, job.key.unit, e, m, job.json};
+        if (KeepsSram(job.key.unit)) args.insert(args.begin() + 1, "--sram");
+        rc = RunScript(bash, args, job.log);
       } catch (const std::exception& ex) {
         std::lock_guard<std::mutex> lock(mu);
         if (!failure) failure = "synthesizing " + job.key.Label() + ": " + ex.what();
@@ -403,6 +420,7 @@ Area Sum(const std::vector<Found>& found) {
   for (const Found& f : found) {
     a.cells += f.area.cells;
     a.flip_flops += f.area.flip_flops;
+    a.sram_bits += f.area.sram_bits;
     a.depth = std::max(a.depth, f.area.depth);
     a.max_residual = std::max(a.max_residual, f.area.residual);
     estimated |= f.area.source == "estimate";
@@ -431,6 +449,7 @@ void Set(Found& out, const Numbers& n, const std::string& source, std::string wh
   out.area.cells = n.cells;
   out.area.flip_flops = n.flip_flops;
   out.area.depth = n.depth;
+  out.area.sram_bits = n.sram_bits;
   out.area.source = source;
   out.where = std::move(where);
 }

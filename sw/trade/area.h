@@ -28,6 +28,7 @@ struct UnitArea {
   int64_t cells = 0;
   int64_t flip_flops = 0;
   int depth = 0;
+  int64_t sram_bits = 0;  // line arrays kept as SRAM macros, not in cells (rt_mem_system)
   std::string source;   // "cache", "yosys" or "estimate"
   double residual = 0;  // estimate only: the fit's max relative residual on the presets
 };
@@ -36,6 +37,9 @@ struct Area {
   int64_t cells = 0;       // summed over the units
   int64_t flip_flops = 0;  // summed over the units
   int depth = 0;           // max over the units
+  // The caches' line arrays, SRAM macros outside the cells: their area is
+  // not a Yosys figure (docs/synth-table.md).
+  int64_t sram_bits = 0;
   // The weakest source of any unit: "estimate" if one was estimated, else
   // "yosys" if one was synthesized in this run, else "cache".
   std::string source;

@@ -68,6 +68,7 @@ nlohmann::json FormatJson(const FormatResult& r) {
     j["area"] = {{"cells", r.area->cells},
                  {"flip_flops", r.area->flip_flops},
                  {"depth", r.area->depth},
+                 {"sram_bits", r.area->sram_bits},
                  {"source", r.area->source},
                  {"detail", r.area->detail}};
   }
@@ -138,6 +139,14 @@ void PrintTable(const TradeResult& t, FILE* out) {
   };
   row(t.truth, "fp64");
   for (const FormatResult& r : t.formats) row(r, r.format.Name().c_str());
+  for (const FormatResult& r : t.formats) {
+    if (r.area && r.area->sram_bits > 0) {
+      std::fprintf(out, "SRAM           %lld bits of cache lines beside the cells (the same in every format: SRAM "
+                        "macros, whose area is not a Yosys figure)\n",
+                   static_cast<long long>(r.area->sram_bits));
+      break;
+    }
+  }
   std::fprintf(out, "\nmemory image  ");
   for (const FormatResult& r : t.formats) {
     std::fprintf(out, " %s %llu", r.format.Name().c_str(), static_cast<unsigned long long>(r.memory_bytes));
@@ -156,7 +165,8 @@ void PrintTable(const TradeResult& t, FILE* out) {
 std::string TradeCsv(const TradeResult& t) {
   std::ostringstream s;
   s << "scene,format,E,M,bits,hitmiss_mismatch,prim_mismatch,t_rel_p50,t_rel_p99,t_rel_max,psnr_db,holes,nodes,"
-       "leaves,tri_tests,cycles_per_ray,efficiency,bytes_per_ray,cells,flip_flops,depth,area_source,memory_bytes,"
+       "leaves,tri_tests,cycles_per_ray,efficiency,bytes_per_ray,cells,flip_flops,depth,sram_bits,area_source,"
+       "memory_bytes,"
        "rays_per_cycle_per_kcell,warning\n";
   s.precision(9);
   for (const FormatResult& r : t.formats) {
@@ -171,9 +181,10 @@ std::string TradeCsv(const TradeResult& t) {
       s << ",,,";
     }
     if (r.area) {
-      s << r.area->cells << ',' << r.area->flip_flops << ',' << r.area->depth << ',' << r.area->source << ',';
+      s << r.area->cells << ',' << r.area->flip_flops << ',' << r.area->depth << ',' << r.area->sram_bits << ','
+        << r.area->source << ',';
     } else {
-      s << ",,,,";
+      s << ",,,,,";
     }
     s << r.memory_bytes << ',';
     if (auto perf = r.RaysPerCyclePerKcell()) s << *perf;

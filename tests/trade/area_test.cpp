@@ -40,6 +40,7 @@ bool IsFixed(const std::string& unit) {
 struct Row {
   long long cells = 0, ffs = 0;
   int depth = 0;
+  long long sram_bits = 0;
 };
 
 // "unit/preset" -> numbers, from the markdown table: a second reader, kept
@@ -51,8 +52,8 @@ std::map<std::string, Row> ReadTable() {
   while (std::getline(f, line)) {
     char unit[64], preset[64], latency[16];
     Row r;
-    if (std::sscanf(line.c_str(), "| %63s | %63s | %15s | %lld | %lld | %d |", unit, preset, latency, &r.cells, &r.ffs,
-                    &r.depth) == 6) {
+    if (std::sscanf(line.c_str(), "| %63s | %63s | %15s | %lld | %lld | %d | %lld |", unit, preset, latency, &r.cells,
+                    &r.ffs, &r.depth, &r.sram_bits) == 7) {
       rows[std::string(unit) + "/" + preset] = r;
     }
   }
@@ -68,6 +69,7 @@ Row TableSum(const std::map<std::string, Row>& table, const std::string& preset)
     sum.cells += it->second.cells;
     sum.ffs += it->second.ffs;
     sum.depth = std::max(sum.depth, it->second.depth);
+    sum.sram_bits += it->second.sram_bits;
   };
   for (const std::string& u : kFormatUnits) add(u + "/" + preset);
   for (const std::string& u : kFixedUnits) add(u + "/defaults");
@@ -118,6 +120,10 @@ TEST_F(AreaTest, PresetsSumTheTableRows) {
     EXPECT_EQ(a.cells, expected.cells);
     EXPECT_EQ(a.flip_flops, expected.ffs);
     EXPECT_EQ(a.depth, expected.depth);
+    EXPECT_EQ(a.sram_bits, expected.sram_bits);
+    // The caches' line arrays, and nothing else, are SRAM.
+    EXPECT_GT(a.sram_bits, 0);
+    for (const UnitArea& u : a.units) EXPECT_EQ(u.sram_bits > 0, u.unit == "rt_mem_system") << u.unit;
     EXPECT_EQ(a.source, "cache");
     EXPECT_EQ(a.detail, "docs/synth-table.md");
     EXPECT_EQ(a.max_residual, 0.0);
@@ -135,7 +141,9 @@ TEST_F(AreaTest, PresetsSumTheTableRows) {
   };
   EXPECT_EQ(unit("rt_isect_unit").cells, 152355);
   EXPECT_EQ(unit("rt_isect_unit").format, "fp32");
-  EXPECT_EQ(unit("rt_mem_system").flip_flops, 82436);
+  EXPECT_EQ(unit("rt_mem_system").flip_flops, 29380);
+  EXPECT_EQ(unit("rt_mem_system").sram_bits, 57344);  // 3 caches x 64 lines of 32, 32 and 48 bytes
+  EXPECT_EQ(fp32.sram_bits, 57344);
   EXPECT_EQ(unit("rt_mem_system").format, "defaults");
   EXPECT_EQ(fp32.depth, 95);  // rt_leaf_exit (docs/synth-table.md)
   EXPECT_FALSE(fs::exists(options_.cache_dir)) << "a table hit must not synthesize or write the cache";
@@ -181,6 +189,38 @@ TEST_F(AreaTest, MissingFormatIsEstimatedOnRequest) {
   const Area small = CoreArea(fp::ParseFormat("e4m3"), options_);
   EXPECT_NE(small.detail.find("extrapolated to W = 8, p = 4"), std::string::npos) << small.detail;
   EXPECT_FALSE(fs::exists(options_.cache_dir)) << "an estimate must not synthesize";
+}
+
+// rt_mem_system is synthesized with its line arrays as SRAM (area.cpp
+// KeepsSram): without a table row, a cached synthesis of it counts only if
+// it has the SRAM bits (a flip-flop synthesis of the arrays is not the
+// same unit), and the bits reach the core's sum.
+TEST_F(AreaTest, MemorySystemKeepsItsSramBitsApart) {
+  const fs::path copy = CopySource();
+  {
+    std::ifstream in(copy / "docs/synth-table.md");
+    std::stringstream kept;
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("| rt_mem_system |", 0) != 0) kept << line << '\n';
+    }
+    in.close();
+    std::ofstream(copy / "docs/synth-table.md") << kept.str();
+  }
+  options_.source_dir = copy.string();
+  options_.estimate = true;  // never synthesize here
+  const fs::path hashed = fs::path(options_.cache_dir) / RtlHash(copy.string());
+  fs::create_directories(hashed);
+  std::ofstream(hashed / "rt_mem_system_default.json")
+      << "{\"unit\": \"rt_mem_system\", \"E\": null, \"M\": null, \"cells\": 500, \"flip_flops\": 50, \"depth\": 5}\n";
+  EXPECT_THROW(CoreArea(fp::kFp32, options_), InputError) << "a synthesis without SRAM bits was taken";
+  std::ofstream(hashed / "rt_mem_system_default.json")
+      << "{\"unit\": \"rt_mem_system\", \"E\": null, \"M\": null, \"cells\": 500, \"flip_flops\": 50, "
+         "\"depth\": 5, \"sram_bits\": 4096}\n";
+  const Area a = CoreArea(fp::kFp32, options_);
+  EXPECT_EQ(a.sram_bits, 4096);
+  const Area table = CoreArea(fp::kFp32, AreaOptions{false, kSource, options_.cache_dir, 2, {}});
+  EXPECT_EQ(a.cells, table.cells - ReadTable().at("rt_mem_system/defaults").cells + 500);
 }
 
 TEST_F(AreaTest, CacheIsReadBackAndKeyedByTheRtl) {

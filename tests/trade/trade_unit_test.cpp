@@ -61,7 +61,12 @@ FormatResult Row(fp::Format f, uint64_t mismatches, uint64_t holes, int64_t cell
   r.accuracy.rays = 1000;
   r.accuracy.hitmiss = mismatches;
   r.holes.holes = holes;
-  if (cells > 0) r.area = Area{cells, 0, 0, "cache", "", 0, {}};
+  if (cells > 0) {
+    Area a;
+    a.cells = cells;
+    a.source = "cache";
+    r.area = a;
+  }
   return r;
 }
 
