@@ -14,6 +14,14 @@
 
 namespace kdrt::sim {
 
+// The order `kdrt sim` and `kdrt trade` issue a camera's frame in: the
+// Z-order cut into 8 runs, one ray of each in turn (sim/ray_queue.h,
+// MortonStreams), so the rays in flight come from 8 regions of the frame
+// and the traversal-heavy and test-heavy regions overlap (session 25: with
+// the 256-line caches, 16 of 18 generator points at 90 % of the bound at
+// 1024x1024 and latency 20, against 14 in plain Z-order; docs/core-efficiency.md).
+inline constexpr const char* kFrameRayOrder = "morton:8";
+
 struct RunOptions {
   uint32_t mem_latency = 20;
   double mem_bw = 16.0;
@@ -31,7 +39,8 @@ struct RunOptions {
   uint32_t l2_ways = 8;
   uint32_t l2_latency = 10;
   uint32_t ray_chunk = 64;  // consecutive rays a core takes from the shared queue at once
-  // The order the rays enter the core (sim/ray_queue.h, IssueOrder):
+  // The order the rays enter the core (sim/ray_queue.h, IssueOrder; the
+  // front ends issue a camera's frame in kFrameRayOrder):
   // "linear" or "morton" over a row-major frame `frame_width` pixels wide
   // (the front end sets the width of its camera's frame).
   std::string ray_order = "linear";

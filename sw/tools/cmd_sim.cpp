@@ -278,9 +278,9 @@ Runner AddSimCommand(CLI::App& app) {
                   "--image-format); default: --format");
   cmd->add_option("--rays", args->rays, "Trace this ray file (KDRTRAYS) instead of the camera");
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
-  // The camera's rays enter the core in Z-order unless told otherwise
-  // (session 23; the model binaries' own default stays the ray list's order).
-  args->run.ray_order = "morton";
+  // The camera's rays enter the core in kFrameRayOrder unless told otherwise
+  // (the model binaries' own default stays the ray list's order).
+  args->run.ray_order = sim::kFrameRayOrder;
   sim::AddRunOptions(*cmd, args->run);
   cmd->get_option("--ray-order")->each([args](const std::string&) { args->ray_order_given = true; });
   sim::AddParamOptions(*cmd, args->overrides);

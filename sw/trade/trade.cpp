@@ -55,8 +55,8 @@ SimNumbers Simulate(const PreparedScene& p, const RaySet& rays, uint64_t stride,
   }
   sim::RunOptions run;
   run.progress = progress;  // the model's own progress line
-  if (stride == 1) {  // the whole frame: in Z-order, as kdrt sim issues a camera's rays
-    run.ray_order = "morton";
+  if (stride == 1) {  // the whole frame: in kdrt sim's order for a camera's rays
+    run.ray_order = sim::kFrameRayOrder;
     run.frame_width = static_cast<uint32_t>(rays.width);
   }
   const sim::ModelRun m = sim::Simulate(p.image, sub, r.format, run);

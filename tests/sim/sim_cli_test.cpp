@@ -214,7 +214,7 @@ TEST_P(ShadedFrameMatchesRender, ImageAndRaySetsAreIdentical) {
     // The default Z-order issues a pass's rays by their pixels (the image
     // and ray sets above are still the reference's: the hits go back in
     // the pass's order).
-    EXPECT_EQ(p["stats"]["ray_order"], k == 0 ? "morton" : "morton by pixel");
+    EXPECT_EQ(p["stats"]["ray_order"], k == 0 ? "morton:8" : "morton:8 by pixel");
     EXPECT_GE(p["stats"]["cycles_per_ray"].get<double>(), p["stats"]["bound_cycles_per_ray"].get<double>());
     ExpectConsistentBreakdown(p["stats"]);
     rays += p["rays"].get<uint64_t>();
@@ -457,7 +457,7 @@ TEST_F(SimCli, MortonRayOrder) {
   ExpectSameHitBuffers(Path("l.exr"), Path("m.exr"));
   const nlohmann::json j = ReadJson(Path("m.json"));
   const nlohmann::json lj = ReadJson(Path("l.json"));
-  EXPECT_EQ(j["ray_order"], "morton");
+  EXPECT_EQ(j["ray_order"], "morton:8");  // the default for a camera
   EXPECT_EQ(lj["ray_order"], "linear");
   ExpectFastEqualsRtl(j);
   EXPECT_EQ(j["perf_counts"]["ray_out"].get<uint64_t>(), 24u * 20u);
@@ -880,7 +880,7 @@ TEST_F(SimCli, FormatBelowTheRequirementWarnsOrWithStrictFails) {
 // A quick build (KDRT_QUICK_MODELS) lives beside the optimised model of the
 // same key, never in its place; the prebuilt models are always optimised.
 TEST_F(SimCli, QuickModelsAreKeptApartAndMarked) {
-  const std::string args = "sim gen:room:300 --node-cache-lines 256 --which-model";
+  const std::string args = "sim gen:room:300 --node-cache-lines 128 --which-model";
   const RunResult quick = testing::RunCommand("env KDRT_QUICK_MODELS=1 " + std::string(KDRT_BIN) + " " + args);
   const RunResult full = testing::RunCommand("env KDRT_QUICK_MODELS=0 " + std::string(KDRT_BIN) + " " + args);
   ASSERT_EQ(quick.exit_code, 0) << quick.output;
@@ -901,10 +901,10 @@ TEST_F(SimCli, ModelChoiceFollowsTheScene) {
   ASSERT_EQ(def.exit_code, 0) << def.output;
   EXPECT_NE(def.output.find("(prebuilt)"), std::string::npos) << def.output;
   // A cache override needs a model of its own, sized for the scene.
-  const RunResult own = RunKdrt("sim gen:room:300 --node-cache-lines 256 --which-model");
+  const RunResult own = RunKdrt("sim gen:room:300 --node-cache-lines 128 --which-model");
   ASSERT_EQ(own.exit_code, 0) << own.output;
   EXPECT_NE(own.output.find("scene-sized"), std::string::npos) << own.output;
-  EXPECT_NE(own.output.find("c256.64.64"), std::string::npos) << own.output;
+  EXPECT_NE(own.output.find("c128.256.256"), std::string::npos) << own.output;
 }
 
 TEST_F(SimCli, TraceWritesAnFstWaveform) {
