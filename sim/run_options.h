@@ -41,8 +41,8 @@ struct RunOptions {
   uint32_t ray_chunk = 64;  // consecutive rays a core takes from the shared queue at once
   // The order the rays enter the core (sim/ray_queue.h, IssueOrder; the
   // front ends issue a camera's frame in kFrameRayOrder):
-  // "linear" or "morton" over a row-major frame `frame_width` pixels wide
-  // (the front end sets the width of its camera's frame).
+  // "linear", "morton" or "morton:K" over a row-major frame `frame_width`
+  // pixels wide (the front end sets the width of its camera's frame).
   std::string ray_order = "linear";
   uint32_t frame_width = 0;
   int64_t corrupt_reference = -1;  // test hook: falsify the reference of this ray
