@@ -286,13 +286,14 @@ module rt_cache #(
         assign fill_new[Bit] = (32'(fill_way) >> (WayW - l)) == n ? !fill_way[WayW - 1 - l] : fill_base[Bit];
       end
     end
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        for (int s = 0; s < Sets; s++) plru_q[s] <= '0;
-      end else begin
-        if (hit_taken) plru_q[req_set] <= hit_new;
-        if (deliver) plru_q[done_set] <= fill_new;
-      end
+    // No reset, like the lines and keys: a set's bits choose a victim only
+    // once every way of the set is valid, and by then each way's fill has
+    // written every node on its path, so no bit of the reset state is left.
+    // (A reset loop over Sets also stopped Verilator, which does not unroll
+    // a delayed array assignment past 64 iterations by default.)
+    always_ff @(posedge clk_i) begin
+      if (hit_taken) plru_q[req_set] <= hit_new;
+      if (deliver) plru_q[done_set] <= fill_new;
     end
   end else begin : g_direct
     assign points = 1'b1;

@@ -26,7 +26,7 @@ module rt_mem_system #(
   parameter int unsigned TriIdxWidth = 24,
   parameter int unsigned NodeCacheLines = 256,
   parameter int unsigned ListCacheLines = 256,
-  parameter int unsigned TriCacheLines = 256,
+  parameter int unsigned TriCacheLines = 1024,
   parameter int unsigned NodeLineBeats = 2,
   parameter int unsigned ListLineBeats = 2,
   parameter int unsigned CacheMshrs = 16,

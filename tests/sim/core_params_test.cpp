@@ -45,8 +45,8 @@ TEST(CoreParams, TableDefaultsAreTheRtlDefaults) {
 
 TEST(CoreParams, KeyNamesEveryParameter) {
   CoreConfig c = DefaultConfig(fp::kFp32);
-  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t32-s32-n24-i24-a28-c256.256.256-r16-g8-w4-l1");
-  EXPECT_EQ(DefaultConfig(fp::kFp16).Key(), "e5m10v5.10p5.10-t32-s32-n24-i24-a28-c256.256.256-r16-g8-w4-l1");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t32-s32-n24-i24-a28-c256.256.1024-r16-g8-w4-l1");
+  EXPECT_EQ(DefaultConfig(fp::kFp16).Key(), "e5m10v5.10p5.10-t32-s32-n24-i24-a28-c256.256.1024-r16-g8-w4-l1");
   c[kTriCacheLines] = 128;
   EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t32-s32-n24-i24-a28-c256.256.128-r16-g8-w4-l1");
   EXPECT_EQ(c.Json()["TriCacheLines"], 128);

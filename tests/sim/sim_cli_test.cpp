@@ -904,7 +904,7 @@ TEST_F(SimCli, ModelChoiceFollowsTheScene) {
   const RunResult own = RunKdrt("sim gen:room:300 --node-cache-lines 128 --which-model");
   ASSERT_EQ(own.exit_code, 0) << own.output;
   EXPECT_NE(own.output.find("scene-sized"), std::string::npos) << own.output;
-  EXPECT_NE(own.output.find("c128.256.256"), std::string::npos) << own.output;
+  EXPECT_NE(own.output.find("c128.256.1024"), std::string::npos) << own.output;
 }
 
 TEST_F(SimCli, TraceWritesAnFstWaveform) {

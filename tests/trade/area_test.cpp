@@ -141,9 +141,9 @@ TEST_F(AreaTest, PresetsSumTheTableRows) {
   };
   EXPECT_EQ(unit("rt_isect_unit").cells, 152355);
   EXPECT_EQ(unit("rt_isect_unit").format, "fp32");
-  EXPECT_EQ(unit("rt_mem_system").flip_flops, 43828);
-  EXPECT_EQ(unit("rt_mem_system").sram_bits, 229376);  // 3 caches x 256 lines of 32, 32 and 48 bytes
-  EXPECT_EQ(fp32.sram_bits, 229376);
+  EXPECT_EQ(unit("rt_mem_system").flip_flops, 63604);
+  EXPECT_EQ(unit("rt_mem_system").sram_bits, 524288);  // 256 node and 256 list lines of 32 bytes, 1024 triangle lines of 48
+  EXPECT_EQ(fp32.sram_bits, 524288);
   EXPECT_EQ(unit("rt_mem_system").format, "defaults");
   EXPECT_EQ(fp32.depth, 95);  // rt_leaf_exit (docs/synth-table.md)
   EXPECT_FALSE(fs::exists(options_.cache_dir)) << "a table hit must not synthesize or write the cache";
