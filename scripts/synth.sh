@@ -19,7 +19,8 @@ UNITS=(fp_add fp_mul fp_div fp_cmp fp_from_f32 fp_to_f32 fp_nudge fp_ldexp rt_tr
 # Units without E and M: one row each, default parameters.
 PLAIN_UNITS=(rt_fifo rt_list_unit rt_thread_stack rt_mem_system rt_thread_fsm rt_perf_events)
 # Units synthesized with --sram: the caches' line arrays as SRAM macros, their
-# bits in the last column and not in the cells (sw/trade/area.cpp KeepsSram).
+# bits in the last column and not in the cells (sw/trade/area.h KeepsSram names
+# the same units; AreaSramUnits.TheScriptTheModelAndTheTableAgree checks it).
 SRAM_UNITS=" rt_mem_system "
 # The preset formats: the one list in cmake/presets.cmake.
 read -r -a FORMATS <<< "$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname "$0")/../cmake/presets.cmake")"

@@ -39,11 +39,6 @@ const char* const kFixedUnits[] = {"rt_list_unit", "rt_mem_system", "rt_thread_f
 const char* const kTablePath = "docs/synth-table.md";
 const char* const kScriptPath = "scripts/synth-unit.sh";
 
-// The units whose caches' line arrays are synthesized as SRAM macros
-// (synth-unit.sh --sram; scripts/synth.sh's SRAM_UNITS): their cells are the
-// logic around the arrays, and the arrays' bits are counted apart.
-bool KeepsSram(const std::string& unit) { return unit == "rt_mem_system"; }
-
 struct Numbers {
   int64_t cells = 0;
   int64_t flip_flops = 0;
@@ -520,6 +515,8 @@ Area Compute(const fp::Format& f, const AreaOptions& options, bool force_estimat
 }
 
 }  // namespace
+
+bool KeepsSram(const std::string& unit) { return unit == "rt_mem_system"; }
 
 std::string RtlHash(const std::string& source_dir) {
   const fs::path rtl = fs::path(source_dir) / "rtl";

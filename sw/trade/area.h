@@ -84,6 +84,12 @@ Area CoreArea(const fp::Format& f, const AreaOptions& options);
 // model, and for checking it against the presets.
 Area EstimateCoreArea(const fp::Format& f, const AreaOptions& options);
 
+// The units whose caches' line arrays are synthesized as SRAM macros
+// (synth-unit.sh --sram): their cells are the logic around the arrays, and
+// the arrays' bits are counted apart. scripts/synth.sh names the same units
+// in SRAM_UNITS for the table (AreaTest checks that the two agree).
+bool KeepsSram(const std::string& unit);
+
 // The cache key of the RTL: 64-bit FNV-1a, in hex, over the names and
 // contents of <source_dir>/rtl/*.sv sorted by name, and of
 // scripts/synth-unit.sh (how a unit is synthesized is part of the result).

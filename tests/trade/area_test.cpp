@@ -149,6 +149,36 @@ TEST_F(AreaTest, PresetsSumTheTableRows) {
   EXPECT_FALSE(fs::exists(options_.cache_dir)) << "a table hit must not synthesize or write the cache";
 }
 
+// scripts/synth.sh names the --sram units for the table (SRAM_UNITS); the
+// C++ side names them for on-demand syntheses and the cache (KeepsSram). Two
+// lists of one fact: this fails when they drift apart, and when the table's
+// SRAM column disagrees with either.
+TEST(AreaSramUnits, TheScriptTheModelAndTheTableAgree) {
+  std::ifstream f(kSource + "/scripts/synth.sh");
+  std::string line, listed;
+  while (std::getline(f, line)) {
+    if (line.rfind("SRAM_UNITS=\"", 0) == 0) listed = line.substr(12, line.rfind('"') - 12);
+  }
+  ASSERT_FALSE(listed.empty()) << "no SRAM_UNITS=\"...\" line in scripts/synth.sh";
+  std::istringstream words(listed);
+  std::vector<std::string> script_units;
+  for (std::string w; words >> w;) script_units.push_back(w);
+  const auto table = ReadTable();
+  std::vector<std::string> all = kFormatUnits;
+  all.insert(all.end(), kFixedUnits.begin(), kFixedUnits.end());
+  for (const std::string& unit : all) {
+    SCOPED_TRACE(unit);
+    const bool in_script = std::find(script_units.begin(), script_units.end(), unit) != script_units.end();
+    EXPECT_EQ(KeepsSram(unit), in_script);
+    const auto row = table.find(unit + "/" + (IsFixed(unit) ? "defaults" : "fp32"));
+    ASSERT_NE(row, table.end());
+    EXPECT_EQ(row->second.sram_bits > 0, in_script);
+  }
+  for (const std::string& unit : script_units) {
+    EXPECT_NE(std::find(all.begin(), all.end(), unit), all.end()) << unit << " is not a core unit";
+  }
+}
+
 TEST_F(AreaTest, EstimateIsWithinItsResidualOnThePresets) {
   const auto table = ReadTable();
   for (const fp::Format& f : fp::Presets()) {
