@@ -35,6 +35,15 @@
 // (it comes again on the first port). So a miss does not cost the first
 // port, whose hits are the cache's answers, a cycle. Unused when MissPort = 0.
 //
+// With PrefetchPort = 1 (and MissPort = 0) the second port takes prefetches:
+// a request there whose line is present or being fetched is taken and
+// dropped; one that misses takes a free miss register, in a cycle in which
+// the first port takes no miss, with no request to answer (count 0). Requests
+// on the first port may join it as any other. A completed register with
+// count 0 writes its line in the completed misses' slot (one a cycle, under
+// the same conditions) and is freed without a response. req2_tag_i is unused
+// then, and miss_o counts the first port's misses only.
+//
 // Memory requests carry {miss register, beat} in mem_req_id_o; the
 // surrounding arbiter routes responses back with it (mem_resp_id_i).
 `default_nettype none
@@ -49,6 +58,7 @@ module rt_cache #(
   parameter int unsigned Mshrs = 4,
   parameter int unsigned Targets = 1,  // requests a miss register answers (the first and merged ones)
   parameter bit MissPort = 1'b0,       // the second, miss-only request port
+  parameter bit PrefetchPort = 1'b0,   // the second port takes prefetches (MissPort = 0)
   localparam int unsigned LineBits = LineBeats * 128,
   localparam int unsigned IdxW = (Lines > 1) ? $clog2(Lines) : 1,
   localparam int unsigned Sets = Lines / Ways,
@@ -176,7 +186,7 @@ module rt_cache #(
   logic                out_take, hit_free, del_free, join2_ok, alloc2_ok, accept2;
   logic [TgtW-1:0]     done_out, done_cnt;
   // The miss taken this cycle (from the first port, else the miss-only one).
-  logic                m_take, m_join;
+  logic                m_take, m_join, m_port2, m_count0;
   logic [MshrW-1:0]    m_join_idx;
   logic [TgtW-1:0]     m_join_cnt;
   logic [KeyWidth-1:0] m_key;
@@ -313,20 +323,29 @@ module rt_cache #(
   // The miss-only port: a miss, in a cycle in which the first port takes none.
   assign join2_ok = !lookup2_hit && join2_valid;
   assign alloc2_ok = !lookup2_hit && !(|key_match2) && free_valid;
-  assign req2_ready_o = MissPort && !(accept && !lookup_hit) && (join2_ok || alloc2_ok);
+  // The prefetch port: present or in flight, dropped; else a free register.
+  if (PrefetchPort && !MissPort) begin : g_prefetch_port
+    assign req2_ready_o = lookup2_hit || (|key_match2) || (alloc2_ok && !(accept && !lookup_hit));
+    assign m_port2 = accept2 && alloc2_ok;
+    assign m_count0 = m_port2;
+  end else begin : g_miss_port
+    assign req2_ready_o = MissPort && !(accept && !lookup_hit) && (join2_ok || alloc2_ok);
+    assign m_port2 = accept2;
+    assign m_count0 = 1'b0;
+  end
   assign accept2 = req2_valid_i && req2_ready_o;
 
-  assign m_take = (accept && !lookup_hit) || accept2;
-  assign m_join = accept2 ? join2_ok : join_ok;
-  assign m_join_idx = accept2 ? join2_idx : join_idx;
+  assign m_take = (accept && !lookup_hit) || m_port2;
+  assign m_join = m_port2 ? join2_ok : join_ok;
+  assign m_join_idx = m_port2 ? join2_idx : join_idx;
   assign m_join_cnt = mshr_cnt_q[TgtW*m_join_idx +: TgtW];
-  assign m_key = accept2 ? req2_key_i : req_key_i;
-  assign m_addr = accept2 ? req2_addr_i : req_addr_i;
-  assign m_tag = accept2 ? req2_tag_i : req_tag_i;
+  assign m_key = m_port2 ? req2_key_i : req_key_i;
+  assign m_addr = m_port2 ? req2_addr_i : req_addr_i;
+  assign m_tag = m_port2 ? req2_tag_i : req_tag_i;
 
   assign filling_o = |mshr_valid_q;
   assign hit_o = accept && lookup_hit;
-  assign miss_o = m_take;
+  assign miss_o = m_take && !m_count0;
   assign merge_o = m_take && m_join;
   assign wait_inflight_o = req_valid_i && !lookup_hit && (|key_match) && !join_valid;
   assign wait_mshr_o = req_valid_i && !lookup_hit && !(|key_match) && !free_valid;
@@ -383,7 +402,7 @@ module rt_cache #(
           mshr_valid_q[free_idx] <= 1'b1;
           mshr_sent_q[CntW*free_idx +: CntW] <= '0;
           mshr_got_q[LineBeats*free_idx +: LineBeats] <= '0;
-          mshr_cnt_q[TgtW*free_idx +: TgtW] <= TgtW'(1);
+          mshr_cnt_q[TgtW*free_idx +: TgtW] <= m_count0 ? '0 : TgtW'(1);
           mshr_out_q[TgtW*free_idx +: TgtW] <= '0;
         end
       end
@@ -395,10 +414,11 @@ module rt_cache #(
             mshr_got_q[LineBeats*resp_mshr +: LineBeats] | LineBeats'(1 << resp_beat);
       end
       if (deliver) begin
-        if (done_last) mshr_valid_q[done_idx] <= 1'b0;
+        // (A prefetch nobody joined, count 0: the line alone.)
+        if (done_last || done_cnt == '0) mshr_valid_q[done_idx] <= 1'b0;
         mshr_out_q[TgtW*done_idx +: TgtW] <= done_out + 1'b1;
         valid_q[done_line] <= 1'b1;
-        del_valid_q <= 1'b1;
+        if (done_cnt != '0) del_valid_q <= 1'b1;
       end
     end
   end

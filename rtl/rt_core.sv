@@ -56,6 +56,10 @@ module rt_core #(
   // a list line at a time and the memory side hands them on one a cycle
   // (rt_list_unit, rt_mem_system); 0: one list request per entry.
   parameter int unsigned ListStream /*verilator public*/ = 1,
+  // N > 0: the list unit prefetches the list lines of the next N jobs in its
+  // queue through the list cache's prefetch port (rt_list_unit, rt_cache
+  // PrefetchPort); 0: no prefetch.
+  parameter int unsigned ListPrefetch /*verilator public*/ = 0,
   localparam int unsigned W = E + M + 1,
   localparam int unsigned TW = TravE + TravM + 1,
   localparam int unsigned IW = ImgE + ImgM + 1,
@@ -263,6 +267,8 @@ module rt_core #(
   logic [ThW-1:0]         list_req_tag, tri_tag;
   logic [AddrWidth-1:0]   list_req_addr;
   logic [kdrt_pkg::list_count_bits(16 * ListLineBeats)-1:0] list_req_count;
+  logic                 list_pf_valid, list_pf_ready;
+  logic [AddrWidth-1:0] list_pf_addr;
   logic                   tri_valid, tri_fire;
   logic [TriIdxWidth-1:0] tri_id;
   logic [TriRecBits-1:0]  tri_record;
@@ -276,11 +282,11 @@ module rt_core #(
     end
   end
   rt_list_unit #(.TagWidth(ThW), .Jobs(Threads), .CountWidth(CountW), .AddrWidth(AddrWidth),
-                 .ListStream(ListStream), .LineBytes(16 * ListLineBeats)) u_list (
+                 .ListStream(ListStream), .LineBytes(16 * ListLineBeats), .ListPrefetch(ListPrefetch)) u_list (
     .clk_i, .rst_ni, .list_base_i, .job_valid_i(job_push), .job_ready_o(), .job_tag_i(node_tag),
     .job_first_i(node_first), .job_count_i(CountW'(node_count)), .req_valid_o(list_req_valid),
     .req_ready_i(list_req_ready), .req_tag_o(list_req_tag), .req_addr_o(list_req_addr),
-    .req_count_o(list_req_count)
+    .req_count_o(list_req_count), .pf_valid_o(list_pf_valid), .pf_ready_i(list_pf_ready), .pf_addr_o(list_pf_addr)
   );
 
   logic           isect_in_ready, isect_valid, isect_hit;
@@ -318,7 +324,7 @@ module rt_core #(
                   .NodeCacheLines(NodeCacheLines), .ListCacheLines(ListCacheLines), .TriCacheLines(TriCacheLines),
                   .NodeLineBeats(NodeLineBeats), .ListLineBeats(ListLineBeats), .CacheMshrs(CacheMshrs),
                   .CacheTargets(CacheTargets), .CacheWays(CacheWays), .TriLineBeats(TriBeats),
-                  .TriPerLine(TriPerLine), .ListStream(ListStream)) u_mem (
+                  .TriPerLine(TriPerLine), .ListStream(ListStream), .ListPrefetch(ListPrefetch)) u_mem (
     .clk_i, .rst_ni, .tri_base_i,
     .node_req_valid_i(fetch_valid), .node_req_ready_o(node_req_ready), .node_req_tag_i(fetch_idx),
     .node_req_addr_i(node_base_i + (AddrWidth'(node_q[fetch_idx]) >> SlotBits << 4)),
@@ -327,7 +333,8 @@ module rt_core #(
     .node_resp_valid_o(node_valid), .node_resp_ready_i(node_ready), .node_resp_tag_o(node_tag),
     .node_resp_line_o(node_line),
     .list_req_valid_i(list_req_valid), .list_req_ready_o(list_req_ready), .list_req_tag_i(list_req_tag),
-    .list_req_addr_i(list_req_addr), .list_req_count_i(list_req_count), .tri_resp_valid_o(tri_valid), .tri_resp_ready_i(isect_in_ready),
+    .list_req_addr_i(list_req_addr), .list_req_count_i(list_req_count), .list_pf_valid_i(list_pf_valid),
+    .list_pf_ready_o(list_pf_ready), .list_pf_addr_i(list_pf_addr), .tri_resp_valid_o(tri_valid), .tri_resp_ready_i(isect_in_ready),
     .tri_resp_tag_o(tri_tag), .tri_resp_id_o(tri_id), .tri_resp_o(tri_record),
     .mem_req_valid_o, .mem_req_ready_i, .mem_req_addr_o, .mem_req_tag_o, .mem_resp_valid_i, .mem_resp_tag_i,
     .mem_resp_data_i, .hit_o(cache_hit), .miss_o(cache_miss), .merge_o(cache_merge),

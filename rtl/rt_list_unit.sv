@@ -11,6 +11,15 @@
 // must then be a multiple of ListEntryBytes, as the image's list section
 // is, so that no entry straddles two lines). Both streams are valid/ready
 // with picorv32's rule.
+//
+// With ListPrefetch = N > 0 a prefetcher walks the jobs waiting in the FIFO
+// (not the one being requested), oldest first and at most N of them: one
+// line a cycle (pf_addr_o, the line's first byte) of the job it is at, from
+// its first entry's line to its last's. A job the walker takes before the
+// prefetcher is done with it is left (the prefetcher restarts at the new
+// oldest job). rt_mem_system sends these to the list cache's prefetch port
+// (rt_cache PrefetchPort), so a job's lines are fetched while the jobs
+// before it are requested.
 `default_nettype none
 
 module rt_list_unit #(
@@ -20,6 +29,7 @@ module rt_list_unit #(
   parameter int unsigned AddrWidth = 28,
   parameter int unsigned ListStream = 1,
   parameter int unsigned LineBytes = 32,
+  parameter int unsigned ListPrefetch = 0,  // jobs the prefetcher looks ahead (0: none)
   localparam int unsigned ReqCountW = kdrt_pkg::list_count_bits(LineBytes)
 ) (
   input  logic                  clk_i,
@@ -36,7 +46,11 @@ module rt_list_unit #(
   input  logic                  req_ready_i,
   output logic [TagWidth-1:0]   req_tag_o,
   output logic [AddrWidth-1:0]  req_addr_o,
-  output logic [ReqCountW-1:0]  req_count_o   // entries from req_addr_o on (1 without ListStream)
+  output logic [ReqCountW-1:0]  req_count_o,  // entries from req_addr_o on (1 without ListStream)
+  // list line prefetches (ListPrefetch > 0; else never valid)
+  output logic                  pf_valid_o,
+  input  logic                  pf_ready_i,
+  output logic [AddrWidth-1:0]  pf_addr_o
 );
 
   localparam int unsigned EntryShift = $clog2(kdrt_pkg::ListEntryBytes);
@@ -92,6 +106,71 @@ module rt_list_unit #(
       req_addr_o <= req_addr_o + (AddrWidth'(req_count_o) << EntryShift);
       left_q <= left_q - CountWidth'(req_count_o);
     end
+  end
+
+  // ------------------------------------------------------------ prefetcher
+  if (ListPrefetch > 0) begin : g_prefetch
+    // The FIFO's jobs again, at the FIFO's own positions (rt_fifo pushes and
+    // pops in order: its write and read positions are counted here too).
+    localparam int unsigned JobW = (Jobs > 1) ? $clog2(Jobs) : 1;
+    localparam int unsigned NumW = $clog2(Jobs + 1);
+    logic [31:0]           first_q [Jobs];
+    logic [CountWidth-1:0] count_q [Jobs];
+    logic [JobW-1:0]       wr_q, rd_q;
+    logic [NumW-1:0]       queued_q;  // jobs in the FIFO
+    logic [NumW-1:0]       pf_off_q;  // the prefetcher's job: rd_q + pf_off_q
+    logic [CountWidth-1:0] pf_k_q;    // its next entry
+    logic                  push, pf_fire, pf_job_done;
+    logic [JobW-1:0]       pf_idx;
+    logic [AddrWidth-1:0]  pf_entry_addr;
+    logic [CountWidth-1:0] pf_k_next;
+    logic [LineOffW-EntryShift:0] pf_in_line;
+    function automatic logic [JobW-1:0] wrap_inc(input logic [JobW-1:0] p);
+      wrap_inc = (32'(p) == Jobs - 1) ? '0 : p + 1'b1;
+    endfunction
+    assign push = job_valid_i && job_ready_o;
+    assign pf_idx = JobW'((32'(rd_q) + 32'(pf_off_q)) % Jobs);
+    assign pf_valid_o = pf_off_q < queued_q && 32'(pf_off_q) < ListPrefetch;
+    assign pf_entry_addr = list_base_i + (AddrWidth'(first_q[pf_idx]) << EntryShift) +
+                           (AddrWidth'(pf_k_q) << EntryShift);
+    assign pf_addr_o = {pf_entry_addr[AddrWidth-1:LineOffW], {LineOffW{1'b0}}};
+    assign pf_in_line = (LineOffW - EntryShift + 1)'((LineBytes - 32'(pf_entry_addr[LineOffW-1:0])) >> EntryShift);
+    assign pf_k_next = pf_k_q + CountWidth'(pf_in_line);
+    assign pf_fire = pf_valid_o && pf_ready_i;
+    assign pf_job_done = pf_k_next >= count_q[pf_idx];
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        wr_q <= '0;
+        rd_q <= '0;
+        queued_q <= '0;
+        pf_off_q <= '0;
+        pf_k_q <= '0;
+      end else begin
+        if (push) wr_q <= wrap_inc(wr_q);
+        if (queued_pop) rd_q <= wrap_inc(rd_q);
+        queued_q <= queued_q + NumW'(push) - NumW'(queued_pop);
+        if (queued_pop && pf_off_q == '0) begin
+          // The walker took the prefetcher's job: on to the next oldest.
+          pf_k_q <= '0;
+        end else begin
+          pf_off_q <= pf_off_q + NumW'(pf_fire && pf_job_done) - NumW'(queued_pop);
+          if (pf_fire) pf_k_q <= pf_job_done ? '0 : pf_k_next;
+        end
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (push) begin
+        first_q[wr_q] <= job_first_i;
+        count_q[wr_q] <= job_count_i;
+      end
+    end
+  end else begin : g_no_prefetch
+    assign pf_valid_o = 1'b0;
+    assign pf_addr_o = '0;
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic unused_pf;
+    assign unused_pf = pf_ready_i;
+    /* verilator lint_on UNUSEDSIGNAL */
   end
 
   // Entry index bits above AddrWidth are unused.

@@ -41,6 +41,9 @@ module rt_mem_system #(
   parameter int unsigned TriPerLine = 1,
   // 1: a list request names the entries of one line (list_req_count_i).
   parameter int unsigned ListStream = 1,
+  // 1: the list cache takes line prefetches on its second port (list_pf_*,
+  // rt_cache PrefetchPort; from rt_list_unit's ListPrefetch).
+  parameter int unsigned ListPrefetch = 0,
   localparam int unsigned TriBits = 128 * TriLineBeats / TriPerLine,
   localparam int unsigned ListCountW = kdrt_pkg::list_count_bits(16 * ListLineBeats)
 ) (
@@ -67,6 +70,10 @@ module rt_mem_system #(
   input  logic [TagWidth-1:0]          list_req_tag_i,
   input  logic [AddrWidth-1:0]         list_req_addr_i,
   input  logic [ListCountW-1:0]        list_req_count_i,  // entries from the address on (ListStream)
+  // list line prefetches (ListPrefetch; the line's first byte)
+  input  logic                         list_pf_valid_i,
+  output logic                         list_pf_ready_o,
+  input  logic [AddrWidth-1:0]         list_pf_addr_i,
   output logic                         tri_resp_valid_o,
   input  logic                         tri_resp_ready_i,
   output logic [TagWidth-1:0]          tri_resp_tag_o,
@@ -98,7 +105,7 @@ module rt_mem_system #(
   localparam int unsigned MemIdW = ((CacheMshrs > 1) ? $clog2(CacheMshrs) : 1) + 2;
 
   logic [2:0]           mem_valid, mem_ready, mem_resp_valid, filling;
-  logic [1:0]           unused_req2_ready;  // the list and triangle caches have no miss-only port
+  logic                 unused_req2_ready;  // the triangle cache has no second port
   logic [AddrWidth-1:0] node_mem_addr, list_mem_addr, tri_mem_addr;
   logic [MemIdW-1:0]    node_mem_id, list_mem_id, tri_mem_id, mem_resp_id;
   logic [127:0]         mem_resp_data;
@@ -133,14 +140,16 @@ module rt_mem_system #(
   logic [TriIdxWidth-1:0]       entry_tri;
   rt_cache #(.Lines(ListCacheLines), .LineBeats(ListLineBeats), .KeyWidth(AddrWidth - ListOffW),
              .AddrWidth(AddrWidth), .TagWidth(ListTagW), .Mshrs(CacheMshrs),
-             .Targets(CacheTargets), .Ways(CacheWays))
+             .Targets(CacheTargets), .Ways(CacheWays), .PrefetchPort(ListPrefetch != 0))
       u_list_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_req_valid_i), .req_ready_o(list_req_ready_o),
     .req_key_i(list_req_addr_i[AddrWidth-1:ListOffW]),
     .req_addr_i({list_req_addr_i[AddrWidth-1:ListOffW], {ListOffW{1'b0}}}),
     .req_tag_i(list_req_tag_full),
-    .req2_valid_i(1'b0), .req2_ready_o(unused_req2_ready[0]), .req2_key_i('0), .req2_addr_i('0), .req2_tag_i('0),
+    .req2_valid_i(ListPrefetch != 0 && list_pf_valid_i), .req2_ready_o(list_pf_ready_o),
+    .req2_key_i(list_pf_addr_i[AddrWidth-1:ListOffW]),
+    .req2_addr_i({list_pf_addr_i[AddrWidth-1:ListOffW], {ListOffW{1'b0}}}), .req2_tag_i('0),
     .resp_valid_o(list_resp_valid), .resp_ready_i(list_resp_ready), .resp_data_o(list_line),
     .resp_tag_o(list_resp_tag_full),
     .mem_req_valid_o(mem_valid[1]), .mem_req_ready_i(mem_ready[1]), .mem_req_addr_o(list_mem_addr),
@@ -219,7 +228,7 @@ module rt_mem_system #(
     .req_valid_i(tri_req_valid), .req_ready_o(tri_req_ready), .req_key_i(tri_line_key),
     .req_addr_i(tri_base_i + (AddrWidth'(tri_line_key) << 4) * AddrWidth'(TriLineBeats)),
     .req_tag_i({entry_tag, entry_tri}),
-    .req2_valid_i(1'b0), .req2_ready_o(unused_req2_ready[1]), .req2_key_i('0), .req2_addr_i('0), .req2_tag_i('0),
+    .req2_valid_i(1'b0), .req2_ready_o(unused_req2_ready), .req2_key_i('0), .req2_addr_i('0), .req2_tag_i('0),
     .resp_valid_o(tri_resp_valid_o), .resp_ready_i(tri_resp_ready_i), .resp_data_o(tri_line),
     .resp_tag_o({tri_resp_tag_o, tri_resp_id_o}),
     .mem_req_valid_o(mem_valid[2]), .mem_req_ready_i(mem_ready[2]), .mem_req_addr_o(tri_mem_addr),
@@ -266,7 +275,7 @@ module rt_mem_system #(
   // line's other entries and the node address bits within a line are unused.
   /* verilator lint_off UNUSEDSIGNAL */
   logic unused_bits;
-  assign unused_bits = ^{list_line, node_req_addr_i, node_req2_addr_i, unused_req2_ready};
+  assign unused_bits = ^{list_line, node_req_addr_i, node_req2_addr_i, unused_req2_ready, list_pf_addr_i};
   /* verilator lint_on UNUSEDSIGNAL */
 
 endmodule

@@ -114,7 +114,13 @@ for file in "$RTL"/*.sv; do
       IFS=: read -r w lines <<< "$ways"
       lint "$top" "Ways=$w ${lines:-}" "${srcs[@]}" -y "$RTL" "$file" -GWays="$w" ${lines:+-G$lines}
     done
+    lint "$top" "PrefetchPort=1" "${srcs[@]}" -y "$RTL" "$file" -GPrefetchPort=1\'b1 -GWays=4 -GLines=16
   fi
+  # The list prefetcher (ListPrefetch > 0; the default is 0).
+  case "$top" in
+    rt_list_unit|rt_mem_system|rt_core)
+      lint "$top" "ListPrefetch=4" "${srcs[@]}" -y "$RTL" "$file" -GListPrefetch=4 ;;
+  esac
 done
 
 if [ "$fail" -ne 0 ]; then

@@ -77,9 +77,9 @@ class Cache {
   };
 
   Cache(int lines, int ways, int line_beats, int mshrs, int targets, bool miss_port, uint64_t base,
-        uint64_t line_bytes)
+        uint64_t line_bytes, bool prefetch_port = false)
       : base_(base), line_bytes_(line_bytes), set_mask_(static_cast<uint64_t>(lines / ways) - 1), ways_(ways), way_bits_(__builtin_ctz(ways)),
-        beats_(line_beats), targets_(targets), mshrs_(mshrs), miss_port_(miss_port),
+        beats_(line_beats), targets_(targets), mshrs_(mshrs), miss_port_(miss_port), prefetch_port_(prefetch_port),
         all_mshrs_(mshrs >= 64 ? ~uint64_t{0} : (uint64_t{1} << mshrs) - 1), lines_(lines, kNoLine),
         plru_(ways > 1 ? lines / ways : 0, 0), mshr_(mshrs), keys_(mshrs, 0),
         tags_(static_cast<size_t>(mshrs) * targets) {
@@ -133,7 +133,7 @@ class Cache {
     // A filled line goes out through the delivery register when it is free
     // (or being emptied) and no stalled hit keeps the output.
     const bool deliver = (done_ != 0) & (!del_valid_ | out_take) & !(hit_valid_ & !del_valid_ & !resp_ready);
-    const bool use_r2 = r2.valid & miss_port_;
+    const bool use_r2 = r2.valid & (miss_port_ | prefetch_port_);
     // Most cycles of a cache bring no request, and many nothing else: no
     // response taken or made, no beat offered (so none taken or held) and
     // none come in.
@@ -201,7 +201,21 @@ class Cache {
       }
       taken = ready1 ? 1u : 0u;
     }
-    if (use_r2 && !m_take) {
+    // The prefetch port: a line present or in flight is dropped; a miss
+    // takes a free register (none taken on r1) with no target.
+    bool m_count0 = false;
+    if (use_r2 && prefetch_port_) {
+      const bool drop = FindWay(r2.key) >= 0 || Matches(r2.key) != 0;
+      if (drop) {
+        taken |= 2u;
+      } else if (!m_take && free_idx >= 0) {
+        m_take = true;
+        m_join = false;
+        m_count0 = true;
+        m = &r2;
+        taken |= 2u;
+      }
+    } else if (use_r2 && !m_take) {
       const bool lookup2_hit = FindWay(r2.key) >= 0;
       const uint64_t match2 = lookup2_hit ? 0 : Matches(r2.key);
       const int join2_idx = (match2 & joinable) ? __builtin_ctzll(match2 & joinable) : -1;
@@ -216,7 +230,7 @@ class Cache {
       }
     }
     if (hit) ++ev_.hit;
-    if (m_take) {
+    if (m_take && !m_count0) {
       ++ev_.miss;
       if (m_join) ++ev_.merge;
     }
@@ -250,8 +264,10 @@ class Cache {
         valid_ |= uint64_t{1} << idx;
         unsent_ |= uint64_t{1} << idx;
       }
-      tags_[static_cast<size_t>(idx) * targets_ + s.cnt] = m->tag;
-      if (++s.cnt == targets_) full_ |= uint64_t{1} << idx;
+      if (!m_count0) {
+        tags_[static_cast<size_t>(idx) * targets_ + s.cnt] = m->tag;
+        if (++s.cnt == targets_) full_ |= uint64_t{1} << idx;
+      }
     }
     if (mem_taken) {
       Mshr& s = mshr_[send_idx];
@@ -266,13 +282,16 @@ class Cache {
     if (deliver) {
       const int d = done_idx;
       Mshr& s = mshr_[d];
-      del_tag_ = tags_[static_cast<size_t>(d) * targets_ + s.out];
-      ++s.out;
       const uint64_t set = keys_[d] & set_mask_;
       lines_[set * ways_ + fill_way] = keys_[d];
       if (ways_ > 1) Touch(set, fill_way);
-      del_valid_ = true;
-      if (s.out == s.cnt) {
+      // A prefetch nobody joined (count 0) writes its line and is freed.
+      if (s.cnt > 0) {
+        del_tag_ = tags_[static_cast<size_t>(d) * targets_ + s.out];
+        del_valid_ = true;
+      }
+      ++s.out;
+      if (s.out >= s.cnt) {
         const uint64_t keep = ~(uint64_t{1} << d);
         valid_ &= keep;
         done_ &= keep;
@@ -324,6 +343,7 @@ class Cache {
   int ways_, way_bits_;
   int beats_, targets_, mshrs_;
   bool miss_port_;
+  bool prefetch_port_;  // r2 takes prefetches (rt_cache PrefetchPort)
   uint64_t all_mshrs_;
   std::vector<uint64_t> lines_;  // each line's key, or kNoLine
   std::vector<uint32_t> plru_;   // a set's tree bits (ways > 1)
@@ -508,14 +528,15 @@ class FastCore {
         node_(spec.config[kNodeCacheLines], spec.config[kCacheWays], static_cast<int>(kLineBytes / kBeatBytes),
               spec.config[kCacheMshrs], spec.config[kCacheTargets], true, 0, kLineBytes),
         list_(spec.config[kListCacheLines], spec.config[kCacheWays], static_cast<int>(kLineBytes / kBeatBytes),
-              spec.config[kCacheMshrs], spec.config[kCacheTargets], false, 0, kLineBytes),
+              spec.config[kCacheMshrs], spec.config[kCacheTargets], false, 0, kLineBytes,
+              spec.config[kListPrefetch] > 0),
         tri_(spec.config[kTriCacheLines], spec.config[kCacheWays], spec.image->layout().TriangleLineBeats(),
              spec.config[kCacheMshrs], spec.config[kCacheTargets], false, spec.image->header().tri_offset,
              spec.image->layout().TriangleLineBytes()),
         th_(threads_), fetch_arb_(threads_), fetch2_arb_(threads_), exit_arb_(threads_), out_arb_(threads_),
         moves_(static_cast<size_t>(threads_)), since_(static_cast<size_t>(threads_), 0),
         clip_pipe_(threads_, true), trav_pipe_(threads_, true), jobs_(threads_, true),
-        stream_(spec.config[kListStream] != 0), lists_(spec.image->lists()), header_(spec.image->header()) {
+        stream_(spec.config[kListStream] != 0), prefetch_(static_cast<uint32_t>(spec.config[kListPrefetch])), lists_(spec.image->lists()), header_(spec.image->header()) {
     const CoreConfig& cfg = spec.config;
     const int m = cfg.Format().m;
     // Ray setup and clip (rt_ray_setup M + 8, rt_clip_unit 11) and the
@@ -633,6 +654,11 @@ class FastCore {
   // line register hands them to the triangle cache one a cycle: the next
   // entry, how many are left (0: empty) and whose they are.
   bool stream_ = false;
+  // ListPrefetch (rt_list_unit's prefetcher): the jobs it may look at, the
+  // one it is at (pf_off_ places behind the FIFO's oldest) and its entry.
+  uint32_t prefetch_ = 0;
+  size_t pf_off_ = 0;
+  uint32_t pf_k_ = 0;
   uint32_t em_entry_ = 0, em_left_ = 0;
   uint64_t em_thread_ = 0;
   // The harness's side: the ray offered (ray_valid_i), the rays in flight.
@@ -810,7 +836,22 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   const bool list_resp_ready = stream_ ? (em_left_ == 0 || (tri_taken && em_left_ == 1)) : tri_taken;
   const bool list_resp_fire = list_.resp_valid() && list_resp_ready;
   const uint64_t list_resp_tag = list_resp_fire ? list_.resp_tag() : 0;
-  const bool list_taken = list_.Step(lr, Cache::Req{}, list_resp_ready, g == 1, resp_cache == 1 ? resp_id : -1) & 1u;
+  // The prefetcher's line (rt_list_unit g_prefetch), from the registered
+  // state: the job pf_off_ behind the oldest queued one, at most prefetch_.
+  Cache::Req pfr;
+  uint32_t pf_next = 0;
+  bool pf_job_done = false;
+  if (pf_off_ < jobs_.size() && pf_off_ < prefetch_) {
+    const Job& pj = jobs_.at(pf_off_);
+    const uint64_t addr = header_.list_offset + uint64_t{pj.first + pf_k_} * img::kListEntryBytes;
+    pfr = {true, addr / kLineBytes, 0};
+    pf_next = pf_k_ + static_cast<uint32_t>((kLineBytes - addr % kLineBytes) / img::kListEntryBytes);
+    pf_job_done = pf_next >= pj.count;
+  }
+  const unsigned list_taken_bits =
+      list_.Step(lr, pfr, list_resp_ready, g == 1, resp_cache == 1 ? resp_id : -1);
+  const bool list_taken = (list_taken_bits & 1u) != 0;
+  const bool pf_fire = pfr.valid && (list_taken_bits & 2u) != 0;
   if (stream_) {
     if (tri_taken) {
       ++em_entry_;
@@ -867,8 +908,16 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
     list_k_ += lr_n;
     if (list_k_ == list_job_.count) list_req_valid_ = false;
   }
+  // The prefetcher's edge (before the pop below changes the FIFO).
+  const bool queued_pop = queued && !lr.valid;
+  if (queued_pop && pf_off_ == 0) {
+    pf_k_ = 0;  // the walker took its job: on to the next oldest
+  } else {
+    pf_off_ = pf_off_ + (pf_fire && pf_job_done ? 1 : 0) - (queued_pop ? 1 : 0);
+    if (pf_fire) pf_k_ = pf_job_done ? 0 : pf_next;
+  }
   // queued_pop: a job leaves the FIFO when req_valid_o was low this cycle.
-  if (queued && !lr.valid) {
+  if (queued_pop) {
     list_job_ = jobs_.front();
     jobs_.pop();
     list_k_ = 0;

@@ -24,6 +24,8 @@ class Ring {
   bool empty() const { return head_ == tail_; }
   size_t size() const { return tail_ - head_; }
   const T& front() const { return buf_[head_ & mask_]; }
+  // The entry i places behind the front (i < size()).
+  const T& at(size_t i) const { return buf_[(head_ + i) & mask_]; }
   void pop() { ++head_; }
   void push(const T& v) {
     if (size() > mask_) Grow();

@@ -15,6 +15,15 @@
 // each beat after a random latency and in random order; the requester sends
 // in random bursts and applies random backpressure.
 //
+// Prefetch port (RunPrefetch, PrefetchPort = 1): a prefetcher offers the
+// keys the requester will ask for a few requests later on the second port,
+// holding each until taken. A prefetch never gets a response and is never
+// counted as a miss; every request is still answered exactly once with its
+// line; after the drain no miss register stays in use (filling_o low: a
+// prefetch nobody joined is freed when its line is in); and the same request
+// stream starts fewer fetches of its own (misses that did not merge) with the
+// prefetcher than without it.
+//
 // Replacement (RunReplacement): requests one at a time, each answered before
 // the next, on keys that crowd a few sets; every hit or miss must be the one
 // a C++ model of the sets predicts (lowest invalid way, else the tree
@@ -29,6 +38,7 @@
 #include "Vrt_cache_merge2.h"
 #include "Vrt_cache_merge3.h"
 #include "Vrt_cache_missport.h"
+#include "Vrt_cache_prefetch.h"
 #include "Vrt_cache_ways2.h"
 #include "Vrt_cache_ways8.h"
 #include "sim/sim_ctrl.h"
@@ -233,6 +243,144 @@ bool Run(const char* name, int beats, int mshrs, int targets, bool miss_port, ui
   return true;
 }
 
+// One run of RunPrefetch: the requests' misses that did not merge (their own
+// fetches), or -1 on a failure.
+template <class Dut>
+int64_t PrefetchRun(const char* name, int beats, bool prefetch, uint64_t count) {
+  SimCtrl<Dut> sim;
+  Dut& dut = sim.top();
+  std::mt19937 rng(11), key_rng(12);
+  std::bernoulli_distribution bubble(0.3), stall(0.2), offer(0.7);
+  std::uniform_int_distribution<int> latency(1, 30);
+  std::uniform_int_distribution<uint32_t> key_dist(0, 3 * kLines);
+  constexpr uint64_t kAhead = 6;  // the prefetcher's lead, in requests
+  std::vector<uint32_t> keys(count + kAhead);
+  for (auto& k : keys) k = key_dist(key_rng);
+  auto addr_of = [&](uint32_t key) { return 0x1000u + key * 16u * static_cast<uint32_t>(beats); };
+  std::map<uint32_t, Request> outstanding;
+  std::vector<uint32_t> free_tags;
+  for (uint32_t t = 0; t < kTags; ++t) free_tags.push_back(t);
+  struct Beat {
+    uint64_t due;
+    uint32_t addr, id;
+  };
+  std::vector<Beat> in_flight;
+  uint64_t sent = 0, answered = 0, misses = 0, prefetches = 0, pf_next = kAhead;
+  Request pending{};
+  bool have_pending = false, have_pf = false;
+  uint32_t pf_key = 0;
+  auto fail = [&](const char* what) {
+    std::printf("rt_cache %s: FAIL after %llu requests: %s\n", name, static_cast<unsigned long long>(sent), what);
+    return int64_t{-1};
+  };
+  auto memory = [&](uint64_t cycle) {
+    dut.mem_resp_valid_i = 0;
+    std::vector<size_t> due;
+    for (size_t i = 0; i < in_flight.size(); ++i) {
+      if (in_flight[i].due <= cycle) due.push_back(i);
+    }
+    if (due.empty()) return;
+    const size_t i = due[std::uniform_int_distribution<size_t>(0, due.size() - 1)(rng)];
+    dut.mem_resp_valid_i = 1;
+    dut.mem_resp_id_i = in_flight[i].id;
+    for (int k = 0; k < 16; ++k) PutBits(dut.mem_resp_data_i, 8 * k, 8, MemByte(in_flight[i].addr + k));
+    in_flight.erase(in_flight.begin() + static_cast<long>(i));
+  };
+  dut.req_valid_i = 0;
+  dut.req2_valid_i = 0;
+  dut.mem_resp_valid_i = 0;
+  sim.Reset();
+  uint64_t cycle = 0;
+  for (; answered < count; ++cycle) {
+    if (cycle > 200 * count + 1000) return fail("timeout");
+    if (!have_pending && sent < count && !free_tags.empty() && !bubble(rng)) {
+      const uint32_t tag = free_tags.back();
+      free_tags.pop_back();
+      pending = Request{keys[sent], addr_of(keys[sent]), tag};
+      have_pending = true;
+    }
+    // The prefetcher: the key of a later request, held until taken.
+    if (prefetch && !have_pf && pf_next < sent + 2 * kAhead && pf_next < keys.size() && offer(rng)) {
+      pf_key = keys[pf_next++];
+      have_pf = true;
+    }
+    dut.req_valid_i = have_pending;
+    dut.req_key_i = pending.key;
+    dut.req_addr_i = pending.addr;
+    dut.req_tag_i = pending.tag;
+    dut.req2_valid_i = have_pf;
+    dut.req2_key_i = pf_key;
+    dut.req2_addr_i = addr_of(pf_key);
+    dut.req2_tag_i = 0;
+    dut.resp_ready_i = !stall(rng);
+    memory(cycle);
+    dut.mem_req_ready_i = !stall(rng);
+    sim.Settle();
+    if (!prefetch && dut.req2_ready_o && dut.req2_valid_i) return fail("a prefetch taken with none offered");
+    if (dut.mem_req_valid_o && dut.mem_req_ready_i) {
+      in_flight.push_back(Beat{cycle + static_cast<uint64_t>(latency(rng)), dut.mem_req_addr_o, dut.mem_req_id_o});
+    }
+    const bool accept1 = dut.req_valid_i && dut.req_ready_o;
+    if (dut.miss_o && !(accept1 && !dut.hit_o)) return fail("a miss counted for a prefetch");
+    misses += dut.miss_o && !dut.merge_o;
+    if (accept1) {
+      outstanding[pending.tag] = pending;
+      have_pending = false;
+      ++sent;
+    }
+    if (have_pf && dut.req2_ready_o) {
+      have_pf = false;
+      ++prefetches;
+    }
+    if (dut.resp_valid_o && dut.resp_ready_i) {
+      auto it = outstanding.find(dut.resp_tag_o);
+      if (it == outstanding.end()) return fail("a response no request asked for (a prefetch's?)");
+      for (int k = 0; k < 16 * beats; ++k) {
+        if (GetBits(dut.resp_data_o, 8 * k, 8) != MemByte(it->second.addr + k)) return fail("wrong line");
+      }
+      free_tags.push_back(it->first);
+      outstanding.erase(it);
+      ++answered;
+    }
+    sim.Tick();
+  }
+  // Drain: the prefetches' beats come in, nothing is answered, every miss
+  // register is freed.
+  dut.req_valid_i = 0;
+  dut.req2_valid_i = 0;
+  dut.resp_ready_i = 1;
+  dut.mem_req_ready_i = 1;
+  for (int k = 0; k < 200; ++k, ++cycle) {
+    memory(cycle);
+    sim.Settle();
+    if (dut.mem_req_valid_o) {
+      in_flight.push_back(Beat{cycle + static_cast<uint64_t>(latency(rng)), dut.mem_req_addr_o, dut.mem_req_id_o});
+    }
+    if (dut.resp_valid_o) return fail("a response after every request was answered");
+    sim.Tick();
+  }
+  sim.Settle();
+  if (!in_flight.empty() || !outstanding.empty()) return fail("beats or requests left over");
+  if (dut.filling_o) return fail("a miss register stays in use after the drain (a prefetch not freed?)");
+  if (prefetch && prefetches == 0) return fail("no prefetch taken");
+  return static_cast<int64_t>(misses);
+}
+
+template <class Dut>
+bool RunPrefetch(const char* name, int beats, uint64_t count) {
+  const int64_t with = PrefetchRun<Dut>(name, beats, true, count);
+  const int64_t without = PrefetchRun<Dut>(name, beats, false, count);
+  if (with < 0 || without < 0) return false;
+  if (with >= without) {
+    std::printf("rt_cache %s: FAIL: %lld fetching misses with the prefetcher, %lld without\n", name,
+                static_cast<long long>(with), static_cast<long long>(without));
+    return false;
+  }
+  std::printf("rt_cache %s: PASS prefetch (%llu requests: %lld fetching misses with the prefetcher, %lld without)\n", name,
+              static_cast<unsigned long long>(count), static_cast<long long>(with), static_cast<long long>(without));
+  return true;
+}
+
 // The cache's sets as the header of rtl/rt_cache.sv states them.
 class SetModel {
  public:
@@ -365,6 +513,9 @@ int main(int argc, char** argv) {
   ok = Run<Vrt_cache_ways2>("2-beat lines, 2 ways, 4 miss registers of 3 targets", 2, 4, 3, false, count) && ok;
   ok = Run<Vrt_cache_ways8>("3-beat lines, 8 ways (one set), 3 miss registers of 2 targets, miss-only port", 3, 3,
                             2, true, count) &&
+       ok;
+  ok = RunPrefetch<Vrt_cache_prefetch>("2-beat lines, 2 ways, 4 miss registers of 3 targets, prefetch port", 2,
+                                       count / 4) &&
        ok;
   ok = RunReplacement<Vrt_cache_lines2>("direct-mapped", 1, 2, 4000) && ok;
   ok = RunReplacement<Vrt_cache_ways2>("2 ways", 2, 2, 4000) && ok;

@@ -8,12 +8,19 @@
 // word (the address keeps AddrWidth bits), counts 1 .. 12. Twice: one entry
 // a request, and with ListStream 1, where a request names every entry of
 // the job left in the entry's 32-byte line (req_count_o) and the next
-// request starts at the next line.
+// request starts at the next line. With ListPrefetch N (the _prefetch
+// models), the prefetcher too: valid while it is at one of the N oldest
+// queued jobs (not the walker's), one line address a cycle from the job's
+// first entry's line to its last's, then the next job; a pop of its job
+// restarts it at the new oldest one; random backpressure on pf_ready_i.
+// Without ListPrefetch pf_valid_o stays low.
 #include <algorithm>
 #include <cstdio>
 #include <deque>
 
 #include "Vrt_list_unit.h"
+#include "Vrt_list_unit_prefetch.h"
+#include "Vrt_list_unit_prefetch5.h"
 #include "Vrt_list_unit_stream.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
@@ -39,6 +46,8 @@ struct Model {
   std::deque<Job> queue;
   bool active = false;
   uint32_t tag = 0, addr = 0, left = 0;
+  size_t pf_off = 0;  // the prefetcher's job: queue[pf_off]
+  uint32_t pf_k = 0;  // its next entry
 };
 
 // The entries a request names: one, or (stream) the job's left in the line.
@@ -47,7 +56,7 @@ uint32_t RequestCount(bool stream, uint32_t addr, uint32_t left) {
 }
 
 template <class Dut>
-bool Run(const char* name, bool stream, uint64_t cycles) {
+bool Run(const char* name, bool stream, uint32_t prefetch, uint64_t cycles) {
   SimCtrl<Dut> sim;
   Dut& dut = sim.top();
   dut.job_valid_i = 0;
@@ -58,7 +67,7 @@ bool Run(const char* name, bool stream, uint64_t cycles) {
   Job pending;
   bool offering = false;
   double p_job = 0.3, p_ready = 0.7;
-  uint64_t jobs = 0, requests = 0, entries = 0, full_cycles = 0, multi = 0;
+  uint64_t jobs = 0, requests = 0, entries = 0, full_cycles = 0, multi = 0, prefetches = 0, restarts = 0;
   uint32_t base = 0;
   auto fail = [&](const char* what, uint64_t cycle) {
     std::printf("rt_list_unit (%s): FAIL at cycle %llu: %s\n", name, static_cast<unsigned long long>(cycle), what);
@@ -89,7 +98,19 @@ bool Run(const char* name, bool stream, uint64_t cycles) {
     dut.job_first_i = pending.first;
     dut.job_count_i = pending.count;
     dut.req_ready_i = rng.Chance(p_ready);
+    dut.pf_ready_i = rng.Chance(0.6);
     sim.Settle();
+    const bool pf_valid = m.pf_off < m.queue.size() && m.pf_off < prefetch;
+    uint32_t pf_addr = 0, pf_next = 0;
+    if (pf_valid) {
+      const Job& pj = m.queue[m.pf_off];
+      pf_addr = (base + 4 * pj.first + 4 * m.pf_k) & kAddrMask;
+      pf_next = m.pf_k + (32 - (pf_addr & 31)) / 4;
+    }
+    if (static_cast<bool>(dut.pf_valid_o) != pf_valid) return fail("pf_valid_o", cycle);
+    if (pf_valid && dut.pf_addr_o != (pf_addr & ~31u)) return fail("pf_addr_o", cycle);
+    const bool pf_fire = pf_valid && dut.pf_ready_i;
+    const bool pf_done = pf_valid && pf_next >= m.queue[m.pf_off].count;
     if (static_cast<bool>(dut.job_ready_o) != (m.queue.size() < kJobs)) return fail("job_ready_o", cycle);
     if (static_cast<bool>(dut.req_valid_o) != m.active) return fail("req_valid_o", cycle);
     const uint32_t n = m.active ? RequestCount(stream, m.addr, m.left) : 0;
@@ -101,8 +122,18 @@ bool Run(const char* name, bool stream, uint64_t cycles) {
     const bool job_fire = dut.job_valid_i && dut.job_ready_o;
     const bool req_fire = dut.req_valid_o && dut.req_ready_i;
     sim.Tick();
-    // The model's edge: the walker first (it sees the queue as it was), then the push.
-    if (!m.active && !m.queue.empty()) {
+    // The model's edge: the prefetcher and the walker (they see the queue as
+    // it was), then the push.
+    const bool pop = !m.active && !m.queue.empty();
+    prefetches += pf_fire;
+    if (pop && m.pf_off == 0) {
+      m.pf_k = 0;
+      restarts += pf_valid;
+    } else {
+      m.pf_off = m.pf_off + (pf_fire && pf_done ? 1 : 0) - (pop ? 1 : 0);
+      if (pf_fire) m.pf_k = pf_done ? 0 : pf_next;
+    }
+    if (pop) {
       const Job j = m.queue.front();
       m.queue.pop_front();
       m.active = true;
@@ -127,16 +158,21 @@ bool Run(const char* name, bool stream, uint64_t cycles) {
     std::printf("rt_list_unit (%s): FAIL: the job queue never filled\n", name);
     return false;
   }
+  if ((prefetch > 0) != (prefetches > 0) || (prefetch > 0 && restarts == 0)) {
+    std::printf("rt_list_unit (%s): FAIL: %llu prefetches, %llu restarted by the walker\n", name,
+                static_cast<unsigned long long>(prefetches), static_cast<unsigned long long>(restarts));
+    return false;
+  }
   if (stream != (multi > 0)) {
     std::printf("rt_list_unit (%s): FAIL: %llu requests of several entries\n", name,
                 static_cast<unsigned long long>(multi));
     return false;
   }
   std::printf("rt_list_unit (%s): PASS (%llu cycles, %llu jobs, %llu requests for %llu entries, queue full in "
-              "%llu cycles)\n",
+              "%llu cycles, %llu line prefetches)\n",
               name, static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(jobs),
               static_cast<unsigned long long>(requests), static_cast<unsigned long long>(entries),
-              static_cast<unsigned long long>(full_cycles));
+              static_cast<unsigned long long>(full_cycles), static_cast<unsigned long long>(prefetches));
   return true;
 }
 
@@ -147,8 +183,10 @@ int main(int argc, char** argv) {
   using namespace kdrt::rtlbench;
   Verilated::commandArgs(argc, argv);
   const uint64_t cycles = LongRun() ? 10000000 : 1000000;
-  bool ok = Run<Vrt_list_unit>("an entry a request", false, cycles);
-  ok = Run<Vrt_list_unit_stream>("ListStream 1", true, cycles) && ok;
+  bool ok = Run<Vrt_list_unit>("an entry a request", false, 0, cycles);
+  ok = Run<Vrt_list_unit_stream>("ListStream 1", true, 0, cycles) && ok;
+  ok = Run<Vrt_list_unit_prefetch>("ListStream 1, ListPrefetch 2", true, 2, cycles) && ok;
+  ok = Run<Vrt_list_unit_prefetch5>("an entry a request, ListPrefetch 5 (more than the queue)", false, 5, cycles) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

@@ -357,6 +357,32 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"gen:tree:2000", "fp32"}, SceneCase{"gen:gears:1500", "bf16"}),
     CaseName);
 
+// The list prefetcher (--list-prefetch N: rt_list_unit's ListPrefetch and
+// the list cache's prefetch port) cycle for cycle in both models, with few
+// miss registers of few targets and a slow memory so that prefetches meet
+// full registers, lines in flight and demand requests joining them; and it
+// changes what the core does: the list lines it fetches ahead are hits (or
+// joins) for the list unit, so fewer of its requests start a fetch.
+TEST_F(SimCli, ListPrefetchMatchesTheFastModel) {
+  const std::string common =
+      "sim gen:gears:1500 --res 24x24 --threads 64 --cache-mshrs 8 --cache-targets 2 --mem-latency 60 -q";
+  const RunResult r =
+      RunKdrt(common + " --list-prefetch 4 --model both -o " + Path("x.png") + " --json " + Path("x.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = ReadJson(Path("x.json"));
+  ExpectFastEqualsRtl(j);
+  EXPECT_EQ(j["model"]["ListPrefetch"], 4);
+  const RunResult off = RunKdrt(common + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
+  ASSERT_EQ(off.exit_code, 0) << off.output;
+  const nlohmann::json jo = ReadJson(Path("f.json"));
+  EXPECT_EQ(ReadBytes(Path("f.png")), ReadBytes(Path("x.png")));
+  const auto own_fetches = [](const nlohmann::json& k) {
+    return k["perf_counts"]["list_miss"].get<uint64_t>() - k["perf_counts"]["list_merge"].get<uint64_t>();
+  };
+  EXPECT_LT(own_fetches(j), own_fetches(jo));
+  EXPECT_GT(j["cache_hit_rate"]["list"].get<double>(), jo["cache_hit_rate"]["list"].get<double>());
+}
+
 // Several cores in the fast model (RunFastCores): the SystemC system's
 // cycles core by core, the rays each core took, its counters, and the shared
 // L2's and the memory's figures, with a ray chunk that does not divide the
