@@ -4,7 +4,8 @@
 // registers and handshakes: threads and their states, the fixed-latency
 // units (setup, clip, traversal, intersection), the round-robin arbiters, the
 // node cache with its miss-only port, the list unit (with ListStream its
-// line requests and rt_mem_system's line register), the list and triangle
+// line requests and rt_mem_system's line register; with ListPrefetch its
+// prefetcher and the list cache's prefetch port), the list and triangle
 // caches (sets of lines with pseudo-LRU, miss registers, merging, the two response
 // registers), the memory arbiter and the same MemoryModel. What a ray does
 // (the nodes it fetches, the leaves and their tests) comes from the reference
