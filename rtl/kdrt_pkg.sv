@@ -115,12 +115,13 @@ package kdrt_pkg;
     TravPush   = 2'd2
   } trav_action_e;
 
-  // rt_core's perf_o: one bit per event in this cycle, MSB first (bit 31 ..
+  // rt_core's perf_o: one bit per event in this cycle, MSB first (bit 32 ..
   // bit 0); the harness counts them (sim/sim_report.cpp). One field per line,
   // each with a comment saying what it counts: cmake/perf_layout.cmake
   // generates the C++ view (<build>/generated/sim/perf_layout.h) from this
   // text, so names and bit positions are defined here only.
   typedef struct packed {
+    logic list_prefetch;       // a list line prefetch took a miss register (the line fetched ahead of its job)
     logic busy;                // rays in flight (some thread is not free)
     logic node_wait;           // a thread's node fetch waits: the node cache does not take it
     logic list_wait;           // a list entry request waits: the list cache does not take it

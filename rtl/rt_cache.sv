@@ -103,6 +103,7 @@ module rt_cache #(
   output logic                 merge_o,         // ... and joined a miss register already fetching its line
   output logic                 wait_inflight_o, // a miss waits: its line's register is full or answering
   output logic                 wait_mshr_o,     // a miss waits: no miss register is free
+  output logic                 prefetch_o,      // a prefetch took a miss register (its line fetched ahead)
   output logic                 filling_o        // some miss is being served
 );
 
@@ -346,6 +347,7 @@ module rt_cache #(
   assign filling_o = |mshr_valid_q;
   assign hit_o = accept && lookup_hit;
   assign miss_o = m_take && !m_count0;
+  assign prefetch_o = m_count0;
   assign merge_o = m_take && m_join;
   assign wait_inflight_o = req_valid_i && !lookup_hit && (|key_match) && !join_valid;
   assign wait_mshr_o = req_valid_i && !lookup_hit && !(|key_match) && !free_valid;

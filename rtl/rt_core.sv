@@ -33,7 +33,7 @@ module rt_core #(
   // narrower one, widened exactly on load (docs/memory-image.md).
   parameter int unsigned ImgE /*verilator public*/ = E,
   parameter int unsigned ImgM /*verilator public*/ = M,
-  parameter int unsigned Threads /*verilator public*/ = 32,
+  parameter int unsigned Threads /*verilator public*/ = 96,
   parameter int unsigned StackDepth /*verilator public*/ = 32,
   parameter int unsigned NodeIdxWidth /*verilator public*/ = 24,
   parameter int unsigned TriIdxWidth /*verilator public*/ = 24,
@@ -46,10 +46,10 @@ module rt_core #(
   parameter int unsigned RayIdWidth = 32,
   // Miss registers per cache (outstanding line fetches); the memory tag
   // {cache, miss register, beat} must fit 16 bits.
-  parameter int unsigned CacheMshrs /*verilator public*/ = 16,
+  parameter int unsigned CacheMshrs /*verilator public*/ = 64,
   // Requests each miss register answers: misses to a line already being
   // fetched join its register (1 = no merging; they wait for the fill).
-  parameter int unsigned CacheTargets /*verilator public*/ = 8,
+  parameter int unsigned CacheTargets /*verilator public*/ = 32,
   // Lines per set of each cache (pseudo-LRU replacement): 1 = direct-mapped.
   parameter int unsigned CacheWays /*verilator public*/ = 4,
   // 1 (the default since session 23): the list unit asks for a leaf's entries
@@ -59,7 +59,7 @@ module rt_core #(
   // N > 0: the list unit prefetches the list lines of the next N jobs in its
   // queue through the list cache's prefetch port (rt_list_unit, rt_cache
   // PrefetchPort); 0: no prefetch.
-  parameter int unsigned ListPrefetch /*verilator public*/ = 0,
+  parameter int unsigned ListPrefetch /*verilator public*/ = 16,
   localparam int unsigned W = E + M + 1,
   localparam int unsigned TW = TravE + TravM + 1,
   localparam int unsigned IW = ImgE + ImgM + 1,
@@ -319,7 +319,7 @@ module rt_core #(
 
   // ------------------------------------------------------------ caches and memory
   logic [2:0] cache_hit, cache_miss, cache_merge, cache_wait_inflight, cache_wait_mshr;  // node, list, triangle
-  logic       mem_wait, tri_wait;
+  logic       mem_wait, tri_wait, list_prefetch;
   rt_mem_system #(.AddrWidth(AddrWidth), .TagWidth(ThW), .TriIdxWidth(TriIdxWidth),
                   .NodeCacheLines(NodeCacheLines), .ListCacheLines(ListCacheLines), .TriCacheLines(TriCacheLines),
                   .NodeLineBeats(NodeLineBeats), .ListLineBeats(ListLineBeats), .CacheMshrs(CacheMshrs),
@@ -338,8 +338,8 @@ module rt_core #(
     .tri_resp_tag_o(tri_tag), .tri_resp_id_o(tri_id), .tri_resp_o(tri_record),
     .mem_req_valid_o, .mem_req_ready_i, .mem_req_addr_o, .mem_req_tag_o, .mem_resp_valid_i, .mem_resp_tag_i,
     .mem_resp_data_i, .hit_o(cache_hit), .miss_o(cache_miss), .merge_o(cache_merge),
-    .wait_inflight_o(cache_wait_inflight), .wait_mshr_o(cache_wait_mshr), .tri_wait_o(tri_wait),
-    .entry_fire_o(entry_fire), .mem_wait_o(mem_wait)
+    .wait_inflight_o(cache_wait_inflight), .wait_mshr_o(cache_wait_mshr), .list_prefetch_o(list_prefetch),
+    .tri_wait_o(tri_wait), .entry_fire_o(entry_fire), .mem_wait_o(mem_wait)
   );
 
   // ------------------------------------------------------------ hit out
@@ -415,7 +415,7 @@ module rt_core #(
     .cache_hit_i(cache_hit), .cache_miss_i(cache_miss), .mem_wait_i(mem_wait),
     .node_wait_i(fetch_valid && !node_req_ready), .list_wait_i(list_req_valid && !list_req_ready),
     .tri_wait_i(tri_wait), .cache_merge_i(cache_merge), .cache_wait_inflight_i(cache_wait_inflight),
-    .cache_wait_mshr_i(cache_wait_mshr), .perf_o
+    .cache_wait_mshr_i(cache_wait_mshr), .list_prefetch_i(list_prefetch), .perf_o
   );
 
 endmodule

@@ -93,6 +93,7 @@ module rt_mem_system #(
   output logic [2:0]                   merge_o,          // a miss joined a line being fetched
   output logic [2:0]                   wait_inflight_o,  // a miss waits on a line being fetched
   output logic [2:0]                   wait_mshr_o,      // a miss waits for a free miss register
+  output logic                         list_prefetch_o,  // a list line prefetch took a miss register
   output logic                         tri_wait_o,       // a list entry waits for the triangle cache
   output logic                         entry_fire_o,  // a list entry went on to the triangle cache
   output logic                         mem_wait_o     // a cache waits for memory
@@ -106,6 +107,7 @@ module rt_mem_system #(
 
   logic [2:0]           mem_valid, mem_ready, mem_resp_valid, filling;
   logic                 unused_req2_ready;  // the triangle cache has no second port
+  logic [1:0]           unused_prefetch;    // the node and triangle caches take no prefetches
   logic [AddrWidth-1:0] node_mem_addr, list_mem_addr, tri_mem_addr;
   logic [MemIdW-1:0]    node_mem_id, list_mem_id, tri_mem_id, mem_resp_id;
   logic [127:0]         mem_resp_data;
@@ -125,7 +127,8 @@ module rt_mem_system #(
     .mem_req_valid_o(mem_valid[0]), .mem_req_ready_i(mem_ready[0]), .mem_req_addr_o(node_mem_addr),
     .mem_req_id_o(node_mem_id), .mem_resp_valid_i(mem_resp_valid[0]), .mem_resp_id_i(mem_resp_id),
     .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[0]), .miss_o(miss_o[0]), .merge_o(merge_o[0]),
-    .wait_inflight_o(wait_inflight_o[0]), .wait_mshr_o(wait_mshr_o[0]), .filling_o(filling[0])
+    .wait_inflight_o(wait_inflight_o[0]), .wait_mshr_o(wait_mshr_o[0]), .prefetch_o(unused_prefetch[0]),
+    .filling_o(filling[0])
   );
 
   // The list cache's tag carries the entry's offset in its line and, with
@@ -155,7 +158,8 @@ module rt_mem_system #(
     .mem_req_valid_o(mem_valid[1]), .mem_req_ready_i(mem_ready[1]), .mem_req_addr_o(list_mem_addr),
     .mem_req_id_o(list_mem_id), .mem_resp_valid_i(mem_resp_valid[1]), .mem_resp_id_i(mem_resp_id),
     .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[1]), .miss_o(miss_o[1]), .merge_o(merge_o[1]),
-    .wait_inflight_o(wait_inflight_o[1]), .wait_mshr_o(wait_mshr_o[1]), .filling_o(filling[1])
+    .wait_inflight_o(wait_inflight_o[1]), .wait_mshr_o(wait_mshr_o[1]), .prefetch_o(list_prefetch_o),
+    .filling_o(filling[1])
   );
   localparam int unsigned EntryIdxW = ListOffW - EntryShift;
   if (ListStream != 0) begin : g_stream
@@ -234,7 +238,8 @@ module rt_mem_system #(
     .mem_req_valid_o(mem_valid[2]), .mem_req_ready_i(mem_ready[2]), .mem_req_addr_o(tri_mem_addr),
     .mem_req_id_o(tri_mem_id), .mem_resp_valid_i(mem_resp_valid[2]), .mem_resp_id_i(mem_resp_id),
     .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[2]), .miss_o(miss_o[2]), .merge_o(merge_o[2]),
-    .wait_inflight_o(wait_inflight_o[2]), .wait_mshr_o(wait_mshr_o[2]), .filling_o(filling[2])
+    .wait_inflight_o(wait_inflight_o[2]), .wait_mshr_o(wait_mshr_o[2]), .prefetch_o(unused_prefetch[1]),
+    .filling_o(filling[2])
   );
 
   // The record of the response's triangle: the id (from the tag) picks the
@@ -275,7 +280,7 @@ module rt_mem_system #(
   // line's other entries and the node address bits within a line are unused.
   /* verilator lint_off UNUSEDSIGNAL */
   logic unused_bits;
-  assign unused_bits = ^{list_line, node_req_addr_i, node_req2_addr_i, unused_req2_ready, list_pf_addr_i};
+  assign unused_bits = ^{list_line, node_req_addr_i, node_req2_addr_i, unused_req2_ready, list_pf_addr_i, unused_prefetch};
   /* verilator lint_on UNUSEDSIGNAL */
 
 endmodule

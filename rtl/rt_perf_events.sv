@@ -43,6 +43,7 @@ module rt_perf_events #(
   input  logic [2:0]         cache_merge_i,  // node, list, triangle cache
   input  logic [2:0]         cache_wait_inflight_i,
   input  logic [2:0]         cache_wait_mshr_i,
+  input  logic               list_prefetch_i,  // a list line prefetch took a miss register
   output kdrt_pkg::perf_t    perf_o
 );
 
@@ -76,6 +77,7 @@ module rt_perf_events #(
   assign perf_o.trav_stall = node_stall_i;
   assign perf_o.isect_stall = isect_stall_i;
   assign perf_o.hit_stall = hit_valid_i && !hit_ready_i;
+  assign perf_o.list_prefetch = list_prefetch_i;
 
 endmodule
 

@@ -110,7 +110,7 @@ void CoreHarness::BeginCycle(uint64_t cycle) {
 }
 
 void CoreHarness::EndCycle(uint64_t cycle) {
-  const uint32_t perf = top_.perf_o;
+  const uint64_t perf = top_.perf_o;
   for (int b = 0; b < kPerfBits; ++b) result_.perf[b] += (perf >> b) & 1u;
   for (int t = 0; t < static_cast<int>(Vrt_core_rt_core::Threads); ++t) {
     ++result_.thread_states[ThreadState(top_.thread_state_o, t)];

@@ -73,7 +73,7 @@ class Cache {
     uint64_t key = 0, tag = 0;
   };
   struct Events {
-    uint64_t hit = 0, miss = 0, merge = 0, wait = 0, wait_inflight = 0, wait_mshr = 0;
+    uint64_t hit = 0, miss = 0, merge = 0, wait = 0, wait_inflight = 0, wait_mshr = 0, prefetch = 0;
   };
 
   Cache(int lines, int ways, int line_beats, int mshrs, int targets, bool miss_port, uint64_t base,
@@ -230,6 +230,7 @@ class Cache {
       }
     }
     if (hit) ++ev_.hit;
+    if (m_count0) ++ev_.prefetch;
     if (m_take && !m_count0) {
       ++ev_.miss;
       if (m_join) ++ev_.merge;
@@ -610,6 +611,7 @@ class FastCore {
       perf()[PerfBit(n + "_wait_inflight")] += ev[k]->wait_inflight;
       perf()[PerfBit(n + "_wait_mshr")] += ev[k]->wait_mshr;
     }
+    perf()[PerfBit("list_prefetch")] += list_.events().prefetch;
     out->result = std::move(result_);
   }
 

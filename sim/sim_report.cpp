@@ -29,6 +29,14 @@ nlohmann::json CacheWaits(const std::array<uint64_t, kPerfBits>& p, const std::s
           {"merged_misses", p[PerfBit(cache + "_merge")]}};
 }
 
+// The list cache's, and the list lines its prefetch port fetched ahead of
+// their jobs (rt_list_unit ListPrefetch; 0 without the prefetcher).
+nlohmann::json ListWaits(const std::array<uint64_t, kPerfBits>& p, double cycles) {
+  nlohmann::json j = CacheWaits(p, "list", cycles);
+  j["prefetched_lines"] = p[PerfBit("list_prefetch")];
+  return j;
+}
+
 // The share of thread-cycles in each state.
 nlohmann::json ThreadStates(const HarnessResult& r) {
   double total = 0;
@@ -85,7 +93,7 @@ nlohmann::json ReportJson(const ReportInputs& in) {
         {"backpressure", Ratio(p[kStallBackpressure], cycles)}}},
       {"waits",
        {{"node", CacheWaits(p, "node", cycles)},
-        {"list", CacheWaits(p, "list", cycles)},
+        {"list", ListWaits(p, cycles)},
         {"tri", CacheWaits(p, "tri", cycles)}}},
       // A unit stalls when its input waits on it, starves when rays are in
       // flight and it has nothing to take.
@@ -291,8 +299,12 @@ void PrintReport(const nlohmann::json& j, std::FILE* out) {
                100 * d(w["node"]["wait_in_flight"]), 100 * d(w["list"]["wait_in_flight"]),
                100 * d(w["tri"]["wait_in_flight"]), 100 * d(w["node"]["wait_no_mshr"]),
                100 * d(w["list"]["wait_no_mshr"]), 100 * d(w["tri"]["wait_no_mshr"]));
-  std::fprintf(out, "merged misses  node %llu, list %llu, triangle %llu\n", u(w["node"]["merged_misses"]),
+  std::fprintf(out, "merged misses  node %llu, list %llu, triangle %llu", u(w["node"]["merged_misses"]),
                u(w["list"]["merged_misses"]), u(w["tri"]["merged_misses"]));
+  if (w["list"].contains("prefetched_lines") && u(w["list"]["prefetched_lines"]) > 0) {
+    std::fprintf(out, "; list lines prefetched %llu", u(w["list"]["prefetched_lines"]));
+  }
+  std::fprintf(out, "\n");
   const auto& us = j["unit_stalls"];
   const auto& uv = j["unit_starve"];
   std::fprintf(out, "units          traversal stalled %.1f %%, starved %.1f %%; intersection stalled %.1f %%,"

@@ -18,8 +18,10 @@
 // Prefetch port (RunPrefetch, PrefetchPort = 1): a prefetcher offers the
 // keys the requester will ask for a few requests later on the second port,
 // holding each until taken. A prefetch never gets a response and is never
-// counted as a miss; every request is still answered exactly once with its
-// line; after the drain no miss register stays in use (filling_o low: a
+// counted as a miss; a prefetch that takes a miss register raises prefetch_o
+// (the core's list_prefetch event), and every line fetched is either such a
+// prefetch or an own miss that did not merge; every request is still answered
+// exactly once with its line; after the drain no miss register stays in use (filling_o low: a
 // prefetch nobody joined is freed when its line is in); and the same request
 // stream starts fewer fetches of its own (misses that did not merge) with the
 // prefetcher than without it.
@@ -265,7 +267,7 @@ int64_t PrefetchRun(const char* name, int beats, bool prefetch, uint64_t count) 
     uint32_t addr, id;
   };
   std::vector<Beat> in_flight;
-  uint64_t sent = 0, answered = 0, misses = 0, prefetches = 0, pf_next = kAhead;
+  uint64_t sent = 0, answered = 0, misses = 0, prefetches = 0, pf_next = kAhead, prefetch_fetches = 0, fetched_beats = 0;
   Request pending{};
   bool have_pending = false, have_pf = false;
   uint32_t pf_key = 0;
@@ -319,10 +321,13 @@ int64_t PrefetchRun(const char* name, int beats, bool prefetch, uint64_t count) 
     if (!prefetch && dut.req2_ready_o && dut.req2_valid_i) return fail("a prefetch taken with none offered");
     if (dut.mem_req_valid_o && dut.mem_req_ready_i) {
       in_flight.push_back(Beat{cycle + static_cast<uint64_t>(latency(rng)), dut.mem_req_addr_o, dut.mem_req_id_o});
+      ++fetched_beats;
     }
     const bool accept1 = dut.req_valid_i && dut.req_ready_o;
     if (dut.miss_o && !(accept1 && !dut.hit_o)) return fail("a miss counted for a prefetch");
+    if (dut.prefetch_o && !(have_pf && dut.req2_ready_o)) return fail("a prefetch event without a prefetch taken");
     misses += dut.miss_o && !dut.merge_o;
+    prefetch_fetches += dut.prefetch_o;
     if (accept1) {
       outstanding[pending.tag] = pending;
       have_pending = false;
@@ -355,14 +360,22 @@ int64_t PrefetchRun(const char* name, int beats, bool prefetch, uint64_t count) 
     sim.Settle();
     if (dut.mem_req_valid_o) {
       in_flight.push_back(Beat{cycle + static_cast<uint64_t>(latency(rng)), dut.mem_req_addr_o, dut.mem_req_id_o});
+      ++fetched_beats;
     }
     if (dut.resp_valid_o) return fail("a response after every request was answered");
+    if (dut.prefetch_o) return fail("a prefetch event with no prefetch offered");
     sim.Tick();
   }
   sim.Settle();
   if (!in_flight.empty() || !outstanding.empty()) return fail("beats or requests left over");
   if (dut.filling_o) return fail("a miss register stays in use after the drain (a prefetch not freed?)");
   if (prefetch && prefetches == 0) return fail("no prefetch taken");
+  // Every line fetched is a miss of the requests' own that did not merge or
+  // a prefetch that took a register (prefetch_o, the list_prefetch event).
+  if (fetched_beats != (misses + prefetch_fetches) * static_cast<uint64_t>(beats)) {
+    return fail("the beats fetched are not the own misses' and the counted prefetches' lines");
+  }
+  if (prefetch && prefetch_fetches == 0) return fail("no prefetch fetched a line");
   return static_cast<int64_t>(misses);
 }
 

@@ -40,8 +40,8 @@ bool Run(uint64_t vectors) {
                                "busy", "node_wait", "list_wait", "tri_wait", "node_wait_inflight",
                                "list_wait_inflight", "tri_wait_inflight", "node_wait_mshr", "list_wait_mshr",
                                "tri_wait_mshr", "node_merge", "list_merge", "tri_merge", "trav_stall",
-                               "isect_stall", "hit_stall"};
-  constexpr int kNames = 32;
+                               "isect_stall", "hit_stall", "list_prefetch"};
+  constexpr int kNames = 33;
   static_assert(sizeof(names) / sizeof(names[0]) == kNames);
   if (sim::kPerfBits != kNames) {
     std::printf("rt_perf_events: FAIL: perf_t has %d fields, the bench checks %d\n", sim::kPerfBits, kNames);
@@ -60,7 +60,7 @@ bool Run(uint64_t vectors) {
     const bool busy = rng.Chance(0.8), ray_in = b(), clip = b(), node = b(), node_leaf = rng.Chance(0.5);
     const bool node_stall = b(), trav = b(), overflow = b(), list_req = b(), list_entry = b(), isect_in = b();
     const bool isect_stall = b(), isect_out = b(), out = b(), hit_valid = rng.Chance(0.5), hit_ready = b();
-    const bool mem_wait = rng.Chance(0.5), node_wait = b(), list_wait = b(), tri_wait = b();
+    const bool mem_wait = rng.Chance(0.5), node_wait = b(), list_wait = b(), tri_wait = b(), prefetch = b();
     unsigned exit_req = 0, cache_hit = 0, cache_miss = 0, merge = 0, wait_inflight = 0, wait_mshr = 0;
     for (unsigned t = 0; t < kThreads; ++t) exit_req |= static_cast<unsigned>(rng.Chance(p)) << t;
     for (unsigned c = 0; c < 3; ++c) {
@@ -105,6 +105,7 @@ bool Run(uint64_t vectors) {
     dut.cache_merge_i = merge;
     dut.cache_wait_inflight_i = wait_inflight;
     dut.cache_wait_mshr_i = wait_mshr;
+    dut.list_prefetch_i = prefetch;
     sim.Settle();
 
     const bool trav_in = node && !node_leaf, list_busy = list_req || list_entry;
@@ -142,12 +143,14 @@ bool Run(uint64_t vectors) {
                                        (merge & 4) != 0,
                                        node_stall,
                                        isect_stall,
-                                       hit_valid && !hit_ready};
+                                       hit_valid && !hit_ready,
+                                       prefetch};
     for (int i = 0; i < kNames; ++i) {
       const bool got = (dut.perf_o >> bit[i] & 1) != 0;
       if (got != want[i]) {
-        std::printf("rt_perf_events: FAIL at vector %llu: %s (bit %d) is %d, the model says %d (perf_o 0x%04x)\n",
-                    static_cast<unsigned long long>(n), names[i], bit[i], got, want[i], dut.perf_o);
+        std::printf("rt_perf_events: FAIL at vector %llu: %s (bit %d) is %d, the model says %d (perf_o 0x%09llx)\n",
+                    static_cast<unsigned long long>(n), names[i], bit[i], got, want[i],
+                    static_cast<unsigned long long>(dut.perf_o));
         return false;
       }
       ones[i] += want[i];

@@ -372,7 +372,8 @@ TEST_F(SimCli, ListPrefetchMatchesTheFastModel) {
   const nlohmann::json j = ReadJson(Path("x.json"));
   ExpectFastEqualsRtl(j);
   EXPECT_EQ(j["model"]["ListPrefetch"], 4);
-  const RunResult off = RunKdrt(common + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
+  const RunResult off =
+      RunKdrt(common + " --list-prefetch 0 --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
   ASSERT_EQ(off.exit_code, 0) << off.output;
   const nlohmann::json jo = ReadJson(Path("f.json"));
   EXPECT_EQ(ReadBytes(Path("f.png")), ReadBytes(Path("x.png")));
@@ -608,7 +609,7 @@ TEST_F(SimCli, CoherentRaysMergeNodeMisses) {
   const RunResult s = RunKdrt("sim gen:balls:800 --res 32x32 -q -o " + Path("sim.png") + " --json " + Path("sim.json"));
   ASSERT_EQ(s.exit_code, 0) << s.output;
   const nlohmann::json j = ReadJson(Path("sim.json"));
-  EXPECT_EQ(j["model"]["CacheTargets"].get<int>(), 8);
+  EXPECT_EQ(j["model"]["CacheTargets"].get<int>(), 32);
   EXPECT_GT(j["waits"]["node"]["merged_misses"].get<uint64_t>(), 0u);
   ExpectConsistentBreakdown(j);
 }
