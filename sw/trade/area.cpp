@@ -556,4 +556,21 @@ Area CoreArea(const fp::Format& f, const AreaOptions& options) { return Compute(
 
 Area EstimateCoreArea(const fp::Format& f, const AreaOptions& options) { return Compute(f, options, true); }
 
+std::string UnitSizesNote(int threads, int cache_mshrs, int cache_targets, int list_prefetch) {
+  if (threads == kUnitThreads && cache_mshrs == kUnitCacheMshrs && cache_targets == kUnitCacheTargets &&
+      list_prefetch == kUnitListPrefetch) {
+    return "";
+  }
+  const auto core = [](int t, int r, int g, int f) {
+    return std::to_string(t) + " threads, " + std::to_string(r) + " miss registers of " + std::to_string(g) +
+           " requests, list prefetch " + std::to_string(f);
+  };
+  return "area counts the thread- and miss-register-sized units (rt_thread_fsm, rt_perf_events, rt_leaf_exit, "
+         "rt_hit_merge, rt_list_unit, rt_mem_system) at their module defaults, a core of " +
+         core(kUnitThreads, kUnitCacheMshrs, kUnitCacheTargets, kUnitListPrefetch) + ", not the simulated core of " +
+         core(threads, cache_mshrs, cache_targets, list_prefetch) +
+         ": its cells and flip-flops understate that core, and rays per cycle per 1,000 cells overstate it "
+         "(docs/trade.md)";
+}
+
 }  // namespace kdrt::trade

@@ -70,7 +70,8 @@ struct AreaOptions {
 // The core's units in format f: rt_trav_unit, rt_clip_unit, rt_ray_setup,
 // rt_isect_unit, rt_hit_out, rt_leaf_exit and rt_hit_merge at (E, M), plus
 // rt_list_unit, rt_mem_system, rt_thread_fsm and rt_perf_events once at their
-// defaults (the defaults of rt_core's). rt_fifo and rt_thread_stack are not
+// defaults (their own module defaults: kUnitThreads and the rest below, not
+// rt_core's since session 29; UnitSizesNote says so). rt_fifo and rt_thread_stack are not
 // counted: they are inside rt_list_unit and rt_leaf_exit, whose flattened
 // numbers already include them. Neither are the small glue modules rt_core
 // instantiates itself (two rt_rr_arb).
@@ -94,5 +95,20 @@ bool KeepsSram(const std::string& unit);
 // contents of <source_dir>/rtl/*.sv sorted by name, and of
 // scripts/synth-unit.sh (how a unit is synthesized is part of the result).
 std::string RtlHash(const std::string& source_dir);
+
+// The sizes the table's and the cache's unit rows have: the units' own
+// parameter defaults in rtl/ (tests/trade/area_test.cpp checks them against
+// the RTL): rt_thread_fsm, rt_perf_events, rt_leaf_exit, rt_hit_merge and
+// rt_list_unit (Jobs) at kUnitThreads, rt_mem_system at kUnitCacheMshrs miss
+// registers of kUnitCacheTargets requests, no list prefetcher. Since session
+// 29 rt_core's defaults are larger (sim/core_params.def).
+inline constexpr int kUnitThreads = 32;
+inline constexpr int kUnitCacheMshrs = 16;
+inline constexpr int kUnitCacheTargets = 8;
+inline constexpr int kUnitListPrefetch = 0;
+
+// "" when a core of these sizes is the one the unit rows count; else a note
+// that the area is that smaller core's, for `kdrt trade` to print and keep.
+std::string UnitSizesNote(int threads, int cache_mshrs, int cache_targets, int list_prefetch);
 
 }  // namespace kdrt::trade

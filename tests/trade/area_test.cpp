@@ -153,6 +153,35 @@ TEST_F(AreaTest, PresetsSumTheTableRows) {
 // C++ side names them for on-demand syntheses and the cache (KeepsSram). Two
 // lists of one fact: this fails when they drift apart, and when the table's
 // SRAM column disagrees with either.
+// The unit rows count the units at their own module defaults: kUnitThreads
+// and the rest must be what rtl/ declares, or UnitSizesNote would say the
+// wrong core; and a core of other sizes (the default since session 29) is
+// said to be not the one counted.
+int ModuleDefault(const std::string& file, const std::string& param) {
+  const std::string sv = ReadText(kSource + "/rtl/" + file);
+  const std::string key = "parameter int unsigned " + param + " = ";
+  const size_t at = sv.find(key);
+  if (at == std::string::npos) return -1;
+  return std::stoi(sv.substr(at + key.size()));
+}
+
+TEST(AreaUnitSizes, AreTheModuleDefaultsAndOtherCoresAreSaid) {
+  for (const char* file : {"rt_thread_fsm.sv", "rt_perf_events.sv", "rt_leaf_exit.sv", "rt_hit_merge.sv"}) {
+    EXPECT_EQ(ModuleDefault(file, "Threads"), kUnitThreads) << file;
+  }
+  EXPECT_EQ(ModuleDefault("rt_list_unit.sv", "Jobs"), kUnitThreads);
+  EXPECT_EQ(ModuleDefault("rt_list_unit.sv", "ListPrefetch"), kUnitListPrefetch);
+  EXPECT_EQ(ModuleDefault("rt_mem_system.sv", "CacheMshrs"), kUnitCacheMshrs);
+  EXPECT_EQ(ModuleDefault("rt_mem_system.sv", "CacheTargets"), kUnitCacheTargets);
+  EXPECT_EQ(ModuleDefault("rt_mem_system.sv", "ListPrefetch"), kUnitListPrefetch);
+  EXPECT_EQ(UnitSizesNote(kUnitThreads, kUnitCacheMshrs, kUnitCacheTargets, kUnitListPrefetch), "");
+  const std::string note = UnitSizesNote(96, 64, 32, 16);
+  EXPECT_NE(note.find("not the simulated core of 96 threads, 64 miss registers of 32 requests, list prefetch 16"),
+            std::string::npos)
+      << note;
+  EXPECT_NE(UnitSizesNote(kUnitThreads, kUnitCacheMshrs, kUnitCacheTargets, 4), "");
+}
+
 TEST(AreaSramUnits, TheScriptTheModelAndTheTableAgree) {
   std::ifstream f(kSource + "/scripts/synth.sh");
   std::string line, listed;
