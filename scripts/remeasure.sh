@@ -9,8 +9,9 @@
 #   scripts/remeasure.sh [--timed-only | --no-timed] OUT [KDRT]
 # --timed-only: only the fast-versus-RTL speed sweeps (issue 14), which
 #   must run alone on an idle machine, one point at a time;
-# --no-timed: everything else, two steps at a time (about 15 minutes on 2
-#   cores: efficiency at 128x128 and 1024x1024, secondary rays, scaling,
+# --no-timed: everything else, two steps at a time (about 40 minutes on 2
+#   cores with the 96-thread default, most of it kdrt trade's RTL runs:
+#   efficiency at 128x128 and 1024x1024, secondary rays, scaling,
 #   packed images at 10k-1M, the wider traversal, the latency-200 sweep,
 #   kdrt trade, the sweep example).
 set -euo pipefail
