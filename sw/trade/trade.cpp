@@ -171,10 +171,8 @@ TradeResult MeasureTrade(const PreparedScene& p, const RaySet& rays, const Trade
       t.notes.push_back("area of " + narrower + " counts rt_mem_system with fp32's 3-beat triangle cache lines; "
                         "those cores read shorter lines, so their cells and flip-flops are overestimated (docs/trade.md)");
     }
-  }
-  if (o.area) {
-    // The simulated core is the prebuilt default's (DefaultConfig); its sizes
-    // are the same in every format.
+    // The unit rows are the units at their module sizes; the simulated core
+    // is the prebuilt default's (DefaultConfig), the same sizes in every format.
     const sim::CoreConfig c = sim::DefaultConfig(fp::kFp32);
     const std::string note = UnitSizesNote(c[sim::kThreads], c[sim::kCacheMshrs], c[sim::kCacheTargets],
                                            c[sim::kListPrefetch]);

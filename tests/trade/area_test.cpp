@@ -149,10 +149,6 @@ TEST_F(AreaTest, PresetsSumTheTableRows) {
   EXPECT_FALSE(fs::exists(options_.cache_dir)) << "a table hit must not synthesize or write the cache";
 }
 
-// scripts/synth.sh names the --sram units for the table (SRAM_UNITS); the
-// C++ side names them for on-demand syntheses and the cache (KeepsSram). Two
-// lists of one fact: this fails when they drift apart, and when the table's
-// SRAM column disagrees with either.
 // The unit rows count the units at their own module defaults: kUnitThreads
 // and the rest must be what rtl/ declares, or UnitSizesNote would say the
 // wrong core; and a core of other sizes (the default since session 29) is
@@ -182,6 +178,10 @@ TEST(AreaUnitSizes, AreTheModuleDefaultsAndOtherCoresAreSaid) {
   EXPECT_NE(UnitSizesNote(kUnitThreads, kUnitCacheMshrs, kUnitCacheTargets, 4), "");
 }
 
+// scripts/synth.sh names the --sram units for the table (SRAM_UNITS); the
+// C++ side names them for on-demand syntheses and the cache (KeepsSram). Two
+// lists of one fact: this fails when they drift apart, and when the table's
+// SRAM column disagrees with either.
 TEST(AreaSramUnits, TheScriptTheModelAndTheTableAgree) {
   std::ifstream f(kSource + "/scripts/synth.sh");
   std::string line, listed;
