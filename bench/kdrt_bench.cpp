@@ -23,6 +23,7 @@
 #include "scenes/gen/generators.h"
 #include "trace/memory_image.h"
 #include "trace/tracer.h"
+#include "walk_floor.h"
 
 namespace {
 
@@ -55,6 +56,9 @@ int main(int argc, char** argv) {
   app.add_option("--min-split-gain", build.min_split_gain,
                  "SAH: the gain below which a split counts as a bad refinement (kdrt info --help)")
       ->capture_default_str();
+  app.add_option("--isect-cost", build.isect_cost, "SAH cost of a triangle test (kdrt info --help)")
+      ->capture_default_str();
+  app.add_option("--trav-cost", build.traversal_cost, "SAH cost of a traversal step")->capture_default_str();
   app.add_option("--scenes", scenes,
                  "Comma-separated generator names, each at every --sizes, or name:size for one size")
       ->capture_default_str();
@@ -96,9 +100,10 @@ int main(int argc, char** argv) {
       runs.emplace_back(name, static_cast<int>(size));
     }
   }
-  std::printf("%-8s %9s | %8s %6s %8s | %9s %9s %6s | %9s %9s %6s | %6s\n", "scene", "tris", "refs/tri",
-              "max", "tests/r", "kd build", "emb build", "ratio", "kd Mray/s", "emb Mray/s", "ratio", "agree");
-  std::printf("%s\n", std::string(123, '-').c_str());
+  std::printf("%-8s %9s | %8s %6s %8s | %9s %9s %6s | %9s %9s %6s | %6s %6s | %6s\n", "scene", "tris", "refs/tri",
+              "max", "tests/r", "kd build", "emb build", "ratio", "kd Mray/s", "emb Mray/s", "ratio", "nodes/r",
+              "floor", "agree");
+  std::printf("%s\n", std::string(139, '-').c_str());
   for (const auto& [name, size] : runs) {
     const Scene scene = GenerateScene(name, size);
     const FramedImage framed = BuildFramedImage(scene, build);
@@ -136,11 +141,16 @@ int main(int argc, char** argv) {
 
     const double n = static_cast<double>(rays.size());
     const double kd_mrays = n / kd_seconds * 1e-6, emb_mrays = n / embree_seconds * 1e-6;
-    std::printf("%-8s %9zu | %8.2f %6u %8.2f | %8.3fs %8.3fs %6.2f | %9.2f %9.2f %6.2f | %5.2f%%\n", name.c_str(),
-                scene.triangles.size(), tree.stats.refs_per_triangle, tree.stats.max_leaf_prims,
+    // The walk floor (walk_floor.h): the bare walk's setup and per-node cost
+    // times the nodes the tracer visits, tests free.
+    const bench::WalkFloor floor = bench::MeasureWalkFloor(image, rays, repeat);
+    const double floor_ns = floor.setup_ns_per_ray + ts.totals.nodes / n * floor.ns_per_node;
+    const double floor_mrays = floor_ns > 0 ? 1e3 / floor_ns : 0.0;
+    std::printf("%-8s %9zu | %8.2f %6u %8.2f | %8.3fs %8.3fs %6.2f | %9.2f %9.2f %6.2f | %6.2f %6.2f | %5.2f%%\n",
+                name.c_str(), scene.triangles.size(), tree.stats.refs_per_triangle, tree.stats.max_leaf_prims,
                 ts.totals.tri_tests / n, tree.stats.build_seconds, embree.build_seconds(),
                 tree.stats.build_seconds / embree.build_seconds(), kd_mrays, emb_mrays, kd_mrays / emb_mrays,
-                100.0 * agree / n);
+                ts.totals.nodes / n, floor_mrays / emb_mrays, 100.0 * agree / n);
     std::fflush(stdout);
     rows.push_back({{"scene", name},
                     {"triangles", scene.triangles.size()},
@@ -156,9 +166,17 @@ int main(int argc, char** argv) {
                     {"embree_mrays_per_second", emb_mrays},
                     {"hit_miss_agreement", agree / n},
                     {"per_ray_nodes", ts.totals.nodes / n},
-                    {"per_ray_tri_tests", ts.totals.tri_tests / n}});
+                    {"per_ray_tri_tests", ts.totals.tri_tests / n},
+                    {"walk_floor",
+                     {{"setup_ns_per_ray", floor.setup_ns_per_ray},
+                      {"ns_per_node", floor.ns_per_node},
+                      {"bare_walk_nodes_per_ray", floor.nodes_per_ray},
+                      {"mrays_per_second", floor_mrays},
+                      {"vs_embree", floor_mrays / emb_mrays}}}});
   }
   std::printf("build ratio = kd / Embree (aim <= 2); throughput ratio = kd / Embree (aim >= 0.7)\n");
+  std::printf("floor = the walk floor against Embree: the fastest any scalar walk visiting the tracer's nodes/r\n"
+              "        could be, from a bare walk's setup and per-node cost (bench/walk_floor.h)\n");
   if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << "\n";
   return 0;
 }

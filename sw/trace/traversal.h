@@ -295,15 +295,11 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
   }
   const RaySetup<At>& rt = *trav_ray;
   if (clip.miss) return best;
-  T t0 = clip.t0, t1 = clip.t1;
 
   struct Entry {
     uint32_t node;
     T t0, t1;
   };
-  Entry stack[kMaxTraversalStack];
-  int sp = 0;
-  int in_plane = 0;  // stack entries with a NaN entry t (InPlane)
   const uint32_t* lists = image.lists();
   // A leaf's candidate: the closest hit so far if its t is smaller, or equal
   // with a smaller triangle id (so the order of a leaf's tests does not matter).
@@ -328,13 +324,24 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
   const img::Node* raw_nodes = image.raw_nodes();
   const img::ImageLayout& layout = image.layout();
   // The walk, compiled twice for native fp32: the common case (an fp32
-  // image, no path recorded) without the per-node tests of either.
+  // image, no path recorded) without the per-node tests of either. Its
+  // state is its own (not captured): GCC kept captured locals in memory,
+  // which put a store and a load on every step's chain.
   const auto walk = [&](auto raw_no_path) -> TraceResult<Ai> {
     constexpr bool kRawNoPath = decltype(raw_no_path)::value;
+    T t0 = clip.t0, t1 = clip.t1;
+    Entry stack[kMaxTraversalStack];
+    int sp = 0;
+    int in_plane = 0;  // stack entries with a NaN entry t (InPlane)
+    RayCounters walked;
+    const auto finish = [&counted, &walked, &best]() {
+      counted += walked;
+      return best;
+    };
     uint32_t node = 0;
     for (;;) {
       const img::Node n = kRawNoPath || raw_nodes ? raw_nodes[node] : image.node(node);
-      ++counted.nodes;
+      ++walked.nodes;
       if constexpr (!kRawNoPath) {
         if (path) path->push_back(node);
       }
@@ -355,8 +362,8 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
           node = second;
         } else {
           if (sp >= stack_limit) {
-            ++counted.overflows;
-            return best;
+            ++walked.overflows;
+            return finish();
           }
           stack[sp++] = Entry{second, step.t_lo, t1};
           if (InPlane(at, step.t_lo)) ++in_plane;
@@ -365,11 +372,11 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
         }
         continue;
       }
-      ++counted.leaves;
+      ++walked.leaves;
       const uint32_t count = n.Count();
       const uint32_t* ids = lists + n.FirstEntry();
       const typename Ai::T leaf_tmax = best.t;
-      counted.tri_tests += count;
+      walked.tri_tests += count;
       if (four_wide && count > 1) {
 #if KDRT_HAVE_LEAF_X4
         if constexpr (!Mixed && std::is_same_v<Ai, fp::NativeF32Arith>) {
@@ -394,17 +401,17 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
         }
       }
       const bool may_stop = best.prim != kNoPrim && in_plane == 0;
-      if (best.prim != kNoPrim && query == Query::kAny) return best;
+      if (best.prim != kNoPrim && query == Query::kAny) return finish();
       T best_t;
       if constexpr (Mixed) {
         best_t = Widen(at, ai, best.t);
       } else {
         best_t = best.t;
       }
-      if (may_stop && at.Le(best_t, t1)) return best;
-      if (sp == 0) return best;
+      if (may_stop && at.Le(best_t, t1)) return finish();
+      if (sp == 0) return finish();
       const Entry& e = stack[--sp];
-      if (may_stop && at.Lt(best_t, e.t0)) return best;
+      if (may_stop && at.Lt(best_t, e.t0)) return finish();
       if (InPlane(at, e.t0)) --in_plane;
       node = e.node;
       t0 = e.t0;
