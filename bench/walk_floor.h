@@ -1,14 +1,14 @@
-// The floor under any scalar walk of a kd-tree image: what the simplest walk
-// we could write costs per ray (its setup) and per node, on this tree and
-// these rays, with nothing else to do. kdrt_bench multiplies it by the nodes
-// the reference tracer really visits per ray: a tracer that visits those
-// nodes cannot be faster than that, however cheap its triangle tests.
+// The walk floor: what the simplest walk of a kd-tree image we could write
+// costs on these rays, visiting the nodes the reference tracer visits, with
+// nothing else to do. A tracer that visits those nodes is not faster than
+// that, however cheap its triangle tests.
 //
-// The bare walk has no triangle tests, no slack on the cell intervals, no
-// stop rule (it crosses every cell the ray crosses: more nodes than a real
-// trace, each as cheap as a step can be) and no counters; the ray setup is the
-// tracer's own (frame, watertight setup, box clip). It is a measurement, not
-// a tracer: its decisions are not the hardware's.
+// The bare walk has the tracer's ray setup (frame, watertight setup, box
+// clip) and its front-to-back order, but no triangle tests, no slack on the
+// cell intervals and no counters; instead of the stop rules it ends each ray
+// after as many leaves as the tracer's walk of that ray fetched, so it visits
+// about the same nodes (the same ones but where the slack moved a decision).
+// It is a measurement, not a tracer: its decisions are not the hardware's.
 #pragma once
 
 #include <algorithm>
@@ -23,15 +23,17 @@
 namespace kdrt::bench {
 
 struct WalkFloor {
+  double ns_per_ray = 0;        // the bare walk, setup included
   double setup_ns_per_ray = 0;  // frame, ray setup and box clip alone
-  double ns_per_node = 0;       // the bare walk's time beyond its setup, per node
   double nodes_per_ray = 0;     // nodes the bare walk visits
 };
 
 namespace detail {
 
-// Returns the nodes visited (0 if `walk` is false: the setup alone).
-inline uint64_t BareWalk(const ImageView& image, const std::vector<Ray>& rays, bool walk, float* sink) {
+// Returns the nodes visited (0 if `walk` is false: the setup alone). Ray i
+// ends after leaves[i] leaves.
+inline uint64_t BareWalk(const ImageView& image, const std::vector<Ray>& rays, const std::vector<uint32_t>& leaves,
+                         bool walk, float* sink) {
   const fp::NativeF32Arith a;
   const img::Node* nodes = image.raw_nodes();
   const img::Header& h = image.header();
@@ -43,14 +45,15 @@ inline uint64_t BareWalk(const ImageView& image, const std::vector<Ray>& rays, b
     float t0, t1;
   };
   Entry stack[kMaxTraversalStack];
-  for (const Ray& ray : rays) {
-    const RaySetup<fp::NativeF32Arith> r = SetupRay(a, ToFrameFtz(ray, frame).ray);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const RaySetup<fp::NativeF32Arith> r = SetupRay(a, ToFrameFtz(rays[i], frame).ray);
     const BoxClip<fp::NativeF32Arith> c = ClipToBox(a, r, h.bounds_min, h.bounds_max);
     keep += c.t0;
     if (!walk || c.miss) continue;
     float t0 = c.t0, t1 = c.t1;
     int sp = 0;
     uint32_t node = 0;
+    uint32_t leaves_left = leaves[i];
     for (;;) {
       const img::Node n = nodes[node];
       ++visited;
@@ -74,7 +77,7 @@ inline uint64_t BareWalk(const ImageView& image, const std::vector<Ray>& rays, b
         }
         continue;
       }
-      if (sp == 0) break;
+      if (--leaves_left == 0 || sp == 0) break;
       --sp;
       node = stack[sp].node;
       t0 = stack[sp].t0;
@@ -87,29 +90,31 @@ inline uint64_t BareWalk(const ImageView& image, const std::vector<Ray>& rays, b
 
 }  // namespace detail
 
-// The fastest of `repeat` runs of each (an fp32 image: raw nodes).
-inline WalkFloor MeasureWalkFloor(const ImageView& image, const std::vector<Ray>& rays, int repeat) {
+// The fastest of `repeat` runs (an fp32 image: raw nodes); leaves[i]: the
+// leaves the tracer fetched on ray i (RayCounters::leaves).
+inline WalkFloor MeasureWalkFloor(const ImageView& image, const std::vector<Ray>& rays,
+                                  const std::vector<uint32_t>& leaves, int repeat) {
   WalkFloor f;
-  if (image.raw_nodes() == nullptr || rays.empty()) return f;
+  if (image.raw_nodes() == nullptr || rays.empty() || leaves.size() != rays.size()) return f;
   fp::ScopedFtzDaz ftz;
   float sink = 0;
   double setup_s = 0, walk_s = 0;
   uint64_t visited = 0;
   for (int run = 0; run < repeat; ++run) {
     auto start = std::chrono::steady_clock::now();
-    detail::BareWalk(image, rays, false, &sink);
+    detail::BareWalk(image, rays, leaves, false, &sink);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     start = std::chrono::steady_clock::now();
-    visited = detail::BareWalk(image, rays, true, &sink);
+    visited = detail::BareWalk(image, rays, leaves, true, &sink);
     const double w = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     setup_s = run == 0 ? s : std::min(setup_s, s);
     walk_s = run == 0 ? w : std::min(walk_s, w);
   }
   asm volatile("" : : "m"(sink));
   const double n = static_cast<double>(rays.size());
+  f.ns_per_ray = walk_s * 1e9 / n;
   f.setup_ns_per_ray = setup_s * 1e9 / n;
   f.nodes_per_ray = static_cast<double>(visited) / n;
-  f.ns_per_node = visited ? std::max(0.0, walk_s - setup_s) * 1e9 / static_cast<double>(visited) : 0.0;
   return f;
 }
 
