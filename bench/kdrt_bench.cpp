@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   app.add_option("--isect-cost", build.isect_cost, "SAH cost of a triangle test (kdrt info --help)")
       ->capture_default_str();
   app.add_option("--trav-cost", build.traversal_cost, "SAH cost of a traversal step")->capture_default_str();
+  app.add_option("--empty-bonus", build.empty_bonus, "SAH bonus for empty children")->capture_default_str();
   app.add_option("--scenes", scenes,
                  "Comma-separated generator names, each at every --sizes, or name:size for one size")
       ->capture_default_str();
