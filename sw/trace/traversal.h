@@ -271,16 +271,6 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
   best.t = r.tmax;
   best.u = best.v = ai.Zero();
 
-  // Counted in a local, added to *counters once, on whichever return.
-  struct CountOnExit {
-    RayCounters local;
-    RayCounters* out;
-    ~CountOnExit() {
-      if (out) *out += local;
-    }
-  } on_exit{RayCounters{}, counters};
-  RayCounters& counted = on_exit.local;
-
   const img::Header& h = image.header();
   RaySetup<At> mixed_ray;  // Mixed: the traversal's own ray
   const RaySetup<At>* trav_ray = nullptr;
@@ -333,9 +323,11 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
     Entry stack[kMaxTraversalStack];
     int sp = 0;
     int in_plane = 0;  // stack entries with a NaN entry t (InPlane)
+    // Counted in a local, added to *counters once, on whichever return
+    // (the returns before the walk have counted nothing).
     RayCounters walked;
-    const auto finish = [&counted, &walked, &best]() {
-      counted += walked;
+    const auto finish = [counters, &walked, &best]() {
+      if (counters) *counters += walked;
       return best;
     };
     uint32_t node = 0;
