@@ -62,10 +62,18 @@ class RrArb {
 // rt_cache at the level of its registers (the header comment of
 // rtl/rt_cache.sv): Step() is one cycle, the combinational part from the
 // registered state and then the clock edge. Miss registers are tracked as
-// bit masks (rt_core allows at most 64): valid, beats left to send, line in,
-// no room for another target.
+// bit masks of kMaxMshrs bits (rt_core allows at most that many): valid,
+// beats left to send, line in, no room for another target.
 class Cache {
  public:
+  using Mask = unsigned __int128;
+  static constexpr int kMaxMshrs = 128;
+  static int Ctz(Mask m) {
+    const uint64_t lo = static_cast<uint64_t>(m);
+    return lo ? __builtin_ctzll(lo) : 64 + __builtin_ctzll(static_cast<uint64_t>(m >> 64));
+  }
+  static Mask Bit(int i) { return Mask{1} << i; }
+
   // A request: its line's key (the line's address is base + key x line
   // bytes, made only when a miss register takes it) and its tag.
   struct Req {
@@ -80,7 +88,7 @@ class Cache {
         uint64_t line_bytes, bool prefetch_port = false)
       : base_(base), line_bytes_(line_bytes), set_mask_(static_cast<uint64_t>(lines / ways) - 1), ways_(ways), way_bits_(__builtin_ctz(ways)),
         beats_(line_beats), targets_(targets), mshrs_(mshrs), miss_port_(miss_port), prefetch_port_(prefetch_port),
-        all_mshrs_(mshrs >= 64 ? ~uint64_t{0} : (uint64_t{1} << mshrs) - 1), lines_(lines, kNoLine),
+        all_mshrs_(mshrs >= kMaxMshrs ? ~Mask{0} : Bit(mshrs) - 1), lines_(lines, kNoLine),
         plru_(ways > 1 ? lines / ways : 0, 0), mshr_(mshrs), keys_(mshrs, 0),
         tags_(static_cast<size_t>(mshrs) * targets) {
     // The tree pseudo-LRU as tables: what a touch of each way clears and
@@ -153,11 +161,11 @@ class Cache {
   // ids of at most 32 bits).
   static constexpr uint64_t kNoLine = ~uint64_t{0};
   // The miss registers in use for `key`: those of its bucket whose key it is.
-  uint64_t Matches(uint64_t key) const {
-    uint64_t mask = 0;
-    for (uint64_t v = bucket_[Bucket(key)] & valid_; v; v &= v - 1) {
-      const int m = __builtin_ctzll(v);
-      mask |= static_cast<uint64_t>(keys_[m] == key) << m;
+  Mask Matches(uint64_t key) const {
+    Mask mask = 0;
+    for (Mask v = bucket_[Bucket(key)] & valid_; v; v &= v - 1) {
+      const int m = Ctz(v);
+      mask |= static_cast<Mask>(keys_[m] == key) << m;
     }
     return mask;
   }
@@ -166,11 +174,11 @@ class Cache {
   __attribute__((noinline)) unsigned StepBusy(const Req& r1, const Req& r2, bool use_r2, bool out_take,
                                               bool deliver, bool mem_taken, int resp_id) {
     // The combinational part.
-    const uint64_t free_mask = all_mshrs_ & ~valid_;
-    const int free_idx = free_mask ? __builtin_ctzll(free_mask) : -1;
+    const Mask free_mask = all_mshrs_ & ~valid_;
+    const int free_idx = free_mask ? Ctz(free_mask) : -1;
     // A request joins the lowest register of its line still taking targets
     // (not filled, not full).
-    const uint64_t joinable = valid_ & ~done_ & ~full_;
+    const Mask joinable = valid_ & ~done_ & ~full_;
     bool hit = false, m_take = false, m_join = false;
     int m_join_idx = -1, hit_way = 0;
     unsigned taken = 0;
@@ -179,8 +187,8 @@ class Cache {
       // A present line is a hit whatever the miss registers hold.
       const int way = FindWay(r1.key);
       const bool lookup_hit = way >= 0;
-      const uint64_t match = lookup_hit ? 0 : Matches(r1.key);
-      const int join_idx = (match & joinable) ? __builtin_ctzll(match & joinable) : -1;
+      const Mask match = lookup_hit ? 0 : Matches(r1.key);
+      const int join_idx = (match & joinable) ? Ctz(match & joinable) : -1;
       const bool hit_free = !hit_valid_ || (out_take && !del_valid_);
       const bool hit_ok = lookup_hit && hit_free;
       const bool join_ok = !lookup_hit && join_idx >= 0;
@@ -217,8 +225,8 @@ class Cache {
       }
     } else if (use_r2 && !m_take) {
       const bool lookup2_hit = FindWay(r2.key) >= 0;
-      const uint64_t match2 = lookup2_hit ? 0 : Matches(r2.key);
-      const int join2_idx = (match2 & joinable) ? __builtin_ctzll(match2 & joinable) : -1;
+      const Mask match2 = lookup2_hit ? 0 : Matches(r2.key);
+      const int join2_idx = (match2 & joinable) ? Ctz(match2 & joinable) : -1;
       const bool join2_ok = !lookup2_hit && join2_idx >= 0;
       const bool alloc2_ok = !lookup2_hit && !match2 && free_idx >= 0;
       if (join2_ok || alloc2_ok) {
@@ -239,7 +247,7 @@ class Cache {
     // The clock edge, from the registered state this cycle ran on.
     const bool send_valid = mem_valid();
     const int send_idx = send_valid ? SendIdx() : -1;
-    const int done_idx = done_ ? __builtin_ctzll(done_) : -1;
+    const int done_idx = done_ ? Ctz(done_) : -1;
     const int fill_way = deliver ? FillWay(keys_[done_idx]) : 0;
     if (out_take && del_valid_) {
       del_valid_ = false;
@@ -255,30 +263,30 @@ class Cache {
       const int idx = m_join ? m_join_idx : free_idx;
       Mshr& s = mshr_[idx];
       if (!m_join) {
-        bucket_[Bucket(keys_[idx])] &= ~(uint64_t{1} << idx);
+        bucket_[Bucket(keys_[idx])] &= ~Bit(idx);
         keys_[idx] = m->key;
-        bucket_[Bucket(keys_[idx])] |= uint64_t{1} << idx;
+        bucket_[Bucket(keys_[idx])] |= Bit(idx);
         s.addr = base_ + m->key * line_bytes_;
         s.sent = s.got = 0;
         s.cnt = 0;
         s.out = 0;
-        valid_ |= uint64_t{1} << idx;
-        unsent_ |= uint64_t{1} << idx;
+        valid_ |= Bit(idx);
+        unsent_ |= Bit(idx);
       }
       if (!m_count0) {
         tags_[static_cast<size_t>(idx) * targets_ + s.cnt] = m->tag;
-        if (++s.cnt == targets_) full_ |= uint64_t{1} << idx;
+        if (++s.cnt == targets_) full_ |= Bit(idx);
       }
     }
     if (mem_taken) {
       Mshr& s = mshr_[send_idx];
-      if (++s.sent == static_cast<uint32_t>(beats_)) unsent_ &= ~(uint64_t{1} << send_idx);
+      if (++s.sent == static_cast<uint32_t>(beats_)) unsent_ &= ~Bit(send_idx);
     }
     if (resp_id >= 0) {
       const int mi = resp_id / 4;
       Mshr& s = mshr_[mi];
       s.got |= 1u << (resp_id % 4);
-      if (s.got == (1u << beats_) - 1) done_ |= uint64_t{1} << mi;
+      if (s.got == (1u << beats_) - 1) done_ |= Bit(mi);
     }
     if (deliver) {
       const int d = done_idx;
@@ -293,7 +301,7 @@ class Cache {
       }
       ++s.out;
       if (s.out >= s.cnt) {
-        const uint64_t keep = ~(uint64_t{1} << d);
+        const Mask keep = ~Bit(d);
         valid_ &= keep;
         done_ &= keep;
         full_ &= keep;
@@ -337,7 +345,7 @@ class Cache {
     }
     return way >= 0 ? way : Victim(set);
   }
-  int SendIdx() const { return held_ ? held_idx_ : __builtin_ctzll(unsent_); }
+  int SendIdx() const { return held_ ? held_idx_ : Ctz(unsent_); }
 
   uint64_t base_, line_bytes_;
   uint64_t set_mask_;
@@ -345,7 +353,7 @@ class Cache {
   int beats_, targets_, mshrs_;
   bool miss_port_;
   bool prefetch_port_;  // r2 takes prefetches (rt_cache PrefetchPort)
-  uint64_t all_mshrs_;
+  Mask all_mshrs_;
   std::vector<uint64_t> lines_;  // each line's key, or kNoLine
   std::vector<uint32_t> plru_;   // a set's tree bits (ways > 1)
   std::vector<uint32_t> touch_clear_, touch_set_;
@@ -353,17 +361,22 @@ class Cache {
   // The miss registers whose key falls in each bucket (a register is in the
   // bucket of the last key it took), so a lookup compares few keys.
   static constexpr size_t kBuckets = 64;
-  std::array<uint64_t, kBuckets> bucket_{};
+  std::array<Mask, kBuckets> bucket_{};
   std::vector<Mshr> mshr_;
   std::vector<uint64_t> keys_;  // each miss register's line
   std::vector<uint64_t> tags_;  // the merged requests of miss register m: [m * targets_, + cnt)
   // Miss registers: in use, beats to send, line in, targets full.
-  uint64_t valid_ = 0, unsent_ = 0, done_ = 0, full_ = 0;
+  Mask valid_ = 0, unsent_ = 0, done_ = 0, full_ = 0;
   bool hit_valid_ = false, del_valid_ = false, held_ = false;
   uint64_t hit_tag_ = 0, del_tag_ = 0;
   int held_idx_ = 0;
   Events ev_;
 };
+
+// A memory request's tag: {cache, miss register, beat} (rt_mem_arb's
+// {source, id}, 16 bits).
+constexpr int kMemIdBits = 10;
+static_assert(Cache::kMaxMshrs * 4 <= (1 << kMemIdBits) && (3 << kMemIdBits) < (1 << 16), "memory tag");
 
 constexpr int kBitRayIn = PerfBit("ray_in"), kBitRayOut = PerfBit("ray_out"), kBitBusy = PerfBit("busy"),
               kBitTravBusy = PerfBit("trav_busy"), kBitTravLeaf = PerfBit("trav_leaf"),
@@ -689,8 +702,8 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   MemoryResponse resp;  // (its data is not used)
   int resp_cache = -1, resp_id = -1;
   if ((!lazy_ || mem_.next_ready_cycle() <= cycle) && mem_.Respond(cycle, &resp)) {
-    resp_cache = resp.tag >> 8;
-    resp_id = resp.tag & 0xFF;
+    resp_cache = resp.tag >> kMemIdBits;
+    resp_id = resp.tag & ((1 << kMemIdBits) - 1);
   }
   const int alloc = has_pending_ ? in_set_[kFree].Lowest() : -1;
   for (int k = 0; k < n_leaf_done_; ++k) Move(leaf_done_[k], kExit);
@@ -756,7 +769,7 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   const int g = kMemPick[mem_last_][mreq];
   if (g >= 0) {
     mem_last_ = g;
-    mem_.Request(caches[g]->mem_addr(), static_cast<uint16_t>(g << 8 | caches[g]->mem_id()), cycle);
+    mem_.Request(caches[g]->mem_addr(), static_cast<uint16_t>(g << kMemIdBits | caches[g]->mem_id()), cycle);
     ++result_.mem_requests;
   }
 

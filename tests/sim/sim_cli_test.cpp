@@ -384,6 +384,27 @@ TEST_F(SimCli, ListPrefetchMatchesTheFastModel) {
   EXPECT_GT(j["cache_hit_rate"]["list"].get<double>(), jo["cache_hit_rate"]["list"].get<double>());
 }
 
+// More than 64 miss registers per cache (the fast model's masks are 128
+// bits since session 32): a 4-line triangle cache, slow memory and gears'
+// large leaves keep more than 64 triangle lines in flight at once (up to 85
+// registers in use, seen in the fast model), cycle for cycle in both models.
+TEST_F(SimCli, MoreThan64MissRegistersMatchTheFastModel) {
+  const RunResult r = RunKdrt(
+      "sim gen:gears:1500 --res 24x24 --threads 16 --cache-mshrs 128 --cache-targets 2 --tri-cache-lines 4 "
+      "--mem-latency 1000 --model both -q -o " +
+      Path("x.png") + " --json " + Path("x.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = ReadJson(Path("x.json"));
+  ExpectFastEqualsRtl(j);
+  EXPECT_EQ(j["model"]["CacheMshrs"], 128);
+  // More beats in flight than 64 triangle lines of 3 beats and the node
+  // and list lines 16 threads can ask for besides.
+  EXPECT_GT(j["memory"]["max_outstanding"].get<int>(), 64 * 3 + 16 * 2 * 2);
+  const RunResult over = RunKdrt("sim gen:gears:1500 --res 8x8 --cache-mshrs 129 --model fast -q");
+  EXPECT_NE(over.exit_code, 0);
+  EXPECT_NE(over.output.find("--cache-mshrs"), std::string::npos) << over.output;
+}
+
 // Several cores in the fast model (RunFastCores): the SystemC system's
 // cycles core by core, the rays each core took, its counters, and the shared
 // L2's and the memory's figures, with a ray chunk that does not divide the
