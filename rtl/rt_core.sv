@@ -33,12 +33,12 @@ module rt_core #(
   // narrower one, widened exactly on load (docs/memory-image.md).
   parameter int unsigned ImgE /*verilator public*/ = E,
   parameter int unsigned ImgM /*verilator public*/ = M,
-  parameter int unsigned Threads /*verilator public*/ = 96,
+  parameter int unsigned Threads /*verilator public*/ = 128,
   parameter int unsigned StackDepth /*verilator public*/ = 32,
   parameter int unsigned NodeIdxWidth /*verilator public*/ = 24,
   parameter int unsigned TriIdxWidth /*verilator public*/ = 24,
   parameter int unsigned AddrWidth /*verilator public*/ = 28,
-  parameter int unsigned NodeCacheLines /*verilator public*/ = 256,
+  parameter int unsigned NodeCacheLines /*verilator public*/ = 512,
   parameter int unsigned ListCacheLines /*verilator public*/ = 256,
   parameter int unsigned TriCacheLines /*verilator public*/ = 1024,
   parameter int unsigned NodeLineBeats = 2,
@@ -46,10 +46,10 @@ module rt_core #(
   parameter int unsigned RayIdWidth = 32,
   // Miss registers per cache (outstanding line fetches); the memory tag
   // {cache, miss register, beat} must fit 16 bits.
-  parameter int unsigned CacheMshrs /*verilator public*/ = 64,
+  parameter int unsigned CacheMshrs /*verilator public*/ = 128,
   // Requests each miss register answers: misses to a line already being
   // fetched join its register (1 = no merging; they wait for the fill).
-  parameter int unsigned CacheTargets /*verilator public*/ = 32,
+  parameter int unsigned CacheTargets /*verilator public*/ = 8,
   // Lines per set of each cache (pseudo-LRU replacement): 1 = direct-mapped.
   parameter int unsigned CacheWays /*verilator public*/ = 4,
   // 1 (the default since session 23): the list unit asks for a leaf's entries
