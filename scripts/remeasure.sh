@@ -9,8 +9,8 @@
 #   scripts/remeasure.sh [--timed-only | --no-timed] OUT [KDRT]
 # --timed-only: only the fast-versus-RTL speed sweeps (issue 14), which
 #   must run alone on an idle machine, one point at a time;
-# --no-timed: everything else, two steps at a time (about 40 minutes on 2
-#   cores with the 96-thread default, most of it kdrt trade's RTL runs:
+# --no-timed: everything else, two steps at a time (51 minutes on 2 cores
+#   with session 32's 128-thread default, most of it kdrt trade's RTL runs:
 #   efficiency at 128x128 and 1024x1024, secondary rays, scaling,
 #   packed images at 10k-1M, the wider traversal, the latency-200 sweep,
 #   kdrt trade, the sweep example).
@@ -21,7 +21,7 @@ case "${1:-}" in
   --no-timed) mode=untimed; shift ;;
 esac
 if [ $# -lt 1 ] || [ "${1:-}" = -h ] || [ "${1:-}" = --help ]; then
-  sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'
   [ $# -lt 1 ] && exit 2 || exit 0
 fi
 out=$1
