@@ -62,12 +62,14 @@ class RrArb {
 // rt_cache at the level of its registers (the header comment of
 // rtl/rt_cache.sv): Step() is one cycle, the combinational part from the
 // registered state and then the clock edge. Miss registers are tracked as
-// bit masks of kMaxMshrs bits (rt_core allows at most that many): valid,
-// beats left to send, line in, no room for another target.
+// 128-bit masks (`kdrt sim --cache-mshrs` allows at most kMaxMshrs, from
+// sim/core_params.def; rt_cache has no limit): valid, beats left to send,
+// line in, no room for another target.
 class Cache {
  public:
   using Mask = unsigned __int128;
-  static constexpr int kMaxMshrs = 128;
+  static constexpr int kMaxMshrs = kCoreParams[kCacheMshrs].max;
+  static_assert(kMaxMshrs <= 128, "the miss registers' masks are 128 bits");
   static int Ctz(Mask m) {
     const uint64_t lo = static_cast<uint64_t>(m);
     return lo ? __builtin_ctzll(lo) : 64 + __builtin_ctzll(static_cast<uint64_t>(m >> 64));
