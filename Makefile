@@ -14,20 +14,30 @@ DEMO_SCENE ?= scenes/simple.nff
 DEMO_SIM_RES ?= 128x128
 KDRT := $(BUILD)/bin/kdrt
 
-.PHONY: all deps configure build demo test test-long lint synth bench clean
+.PHONY: all deps demo-deps configure demo-configure build demo-build demo test test-long lint synth bench clean
 
 all: build
 
 deps:
 	@bash scripts/install-deps.sh
 
-configure: deps
+demo-deps:
+	@bash scripts/install-deps.sh --demo
+
+# Configuring needs only the demo's packages; `deps` comes first where it is asked for.
+demo-configure: demo-deps
 	@test -f $(BUILD)/build.ninja || cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
+
+configure: deps demo-configure
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# The demo builds only what it runs: the kdrt tool and the fp32 core model.
+demo-build: demo-configure
+	@cmake --build $(BUILD) -j $(JOBS) --target kdrt kdrt-sim-fp32
+
+demo: demo-build
 	@mkdir -p out
 	@scene="$(DEMO_SCENE)"; set -e; set -x; \
 	$(KDRT) render "$$scene" -o out/demo.png --hits out/demo-hits.exr --json out/demo.json; \
