@@ -52,7 +52,7 @@ module rt_core #(
   parameter int unsigned CacheTargets /*verilator public*/ = 8,
   // Lines per set of each cache (pseudo-LRU replacement): 1 = direct-mapped.
   parameter int unsigned CacheWays /*verilator public*/ = 4,
-  // 1 (the default since session 23): the list unit asks for a leaf's entries
+  // 1 (the default): the list unit asks for a leaf's entries
   // a list line at a time and the memory side hands them on one a cycle
   // (rt_list_unit, rt_mem_system); 0: one list request per entry.
   parameter int unsigned ListStream /*verilator public*/ = 1,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What set-associative caches buy (issue 13): for each scene, memory latency
+# What set-associative caches buy: for each scene, memory latency
 # and number of ways, `kdrt sim` cycles per ray (efficiency against the
 # per-core bound), memory bytes per ray and the node / list / triangle hit
 # rates, at the same cache size. Prints one Markdown row per scene and

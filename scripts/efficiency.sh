@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The core's efficiency (issue 13): for each scene and memory latency, `kdrt
+# The core's efficiency: for each scene and memory latency, `kdrt
 # sim` cycles per ray against the per-core bound and the window bound (the
 # same taken the rays in flight at a time), the stall breakdown, the
 # cache hit rates, the misses in flight and (when the core reports them) the

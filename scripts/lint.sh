@@ -123,8 +123,8 @@ for file in "$RTL"/*.sv; do
     done
     lint "$top" "PrefetchPort=1" "${srcs[@]}" -y "$RTL" "$file" -GPrefetchPort=1\'b1 -GWays=4 -GLines=16
   fi
-  # The list prefetcher: the units' default is 0 (none), the core's 16
-  # (since session 29), so each is linted with the other as well.
+  # The list prefetcher: the units' default is 0 (none), the core's 16, so
+  # each is linted with the other as well.
   case "$top" in
     rt_list_unit|rt_mem_system)
       lint "$top" "ListPrefetch=4" "${srcs[@]}" -y "$RTL" "$file" -GListPrefetch=4 ;;

@@ -7,10 +7,10 @@
 # Copying the results into the README stays a person's job: each table's
 # text says what changed and why.
 #   scripts/remeasure.sh [--timed-only | --no-timed] OUT [KDRT]
-# --timed-only: only the fast-versus-RTL speed sweeps (issue 14), which
+# --timed-only: only the fast-versus-RTL speed sweeps, which
 #   must run alone on an idle machine, one point at a time;
 # --no-timed: everything else, two steps at a time (51 minutes on 2 cores
-#   with session 32's 128-thread default, most of it kdrt trade's RTL runs:
+#   with the 128-thread default core, most of it kdrt trade's RTL runs:
 #   efficiency at 128x128 and 1024x1024, secondary rays, scaling,
 #   packed images at 10k-1M, the wider traversal, the latency-200 sweep,
 #   kdrt trade, the sweep example).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Multi-core scaling (issue 13, part 3): `kdrt sim --cores N` for each scene,
+# Multi-core scaling: `kdrt sim --cores N` for each scene,
 # core count and memory bandwidth; prints a Markdown table (rays per cycle,
 # speed-up over one core, efficiency against the per-core bound, L2 hit rate,
 # memory bytes per cycle used) and writes OUT.csv and OUT.svg (rays per cycle

@@ -17,7 +17,7 @@ namespace kdrt::sim {
 // The order `kdrt sim` and `kdrt trade` issue a camera's frame in: the
 // Z-order cut into 8 runs, one ray of each in turn (sim/ray_queue.h,
 // MortonStreams), so the rays in flight come from 8 regions of the frame
-// and the traversal-heavy and test-heavy regions overlap (session 25: with
+// and the traversal-heavy and test-heavy regions overlap (measured with
 // the 256-line caches, 16 of 18 generator points at 90 % of the bound at
 // 1024x1024 and latency 20, against 14 in plain Z-order; docs/core-efficiency.md).
 inline constexpr const char* kFrameRayOrder = "morton:8";

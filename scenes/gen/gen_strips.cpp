@@ -4,7 +4,7 @@
 // 90). The rings stand in a G x G grid, each tilted another way, so their
 // cylinders run diagonally through space: a strip's box then spans many
 // cells the strip itself barely touches, the case that makes a kd-tree's
-// leaves large (issue 12's "long thin cylinder strips and spheres";
+// leaves large ("long thin cylinder strips and spheres";
 // gen:rings' finely tessellated tori do not show it). A floor lies below.
 //
 // Size mapping: with S = 16 sides per cylinder and spheres of 8 segments

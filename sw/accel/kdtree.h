@@ -23,8 +23,8 @@ enum class SplitMethod {
 };
 
 // What the SAH build asks of a split by default (BuildOptions::min_split_gain):
-// session 21 made 0.1 the default, where it had been 0 (pbrt-v3's rule);
-// `--min-split-gain 0` gives the earlier trees back (docs/kdtree.md).
+// 0.1; `--min-split-gain 0` is pbrt-v3's rule, any split cheaper than the
+// leaf is good (docs/kdtree.md).
 inline constexpr float kDefaultMinSplitGain = 0.1f;
 
 // pbrt-v3 KdTreeAccel defaults, but for the minimum split gain.

@@ -107,9 +107,9 @@ PlyHeader ReadPlyHeader(const std::string& path, const std::string& bytes, LineC
       e.name = std::string(f[1]);
       e.count = static_cast<uint64_t>(count);
       e.line = line;
-      // assimp 5.2, kdrt's former reader, misread these (strips lost
-      // triangles, a second face element lost faces, a second vertex element
-      // replaced the first); an error is better than a wrong scene.
+      // Readers such as assimp 5.2 misread these (strips lose triangles, a
+      // second face element loses faces, a second vertex element replaces
+      // the first); an error is better than a wrong scene.
       for (const PlyElement& before : h.elements) {
         if (before.name == e.name && (e.name == "vertex" || e.name == "face")) {
           fail(line, "second PLY '" + e.name + "' element");

@@ -1,4 +1,4 @@
-// The cases of `kdrt extremes` (issue "Numerics at the extremes"): scenes and
+// The cases of `kdrt extremes` (numerics at the extremes): scenes and
 // ray sets that push the arithmetic to its limits, each with the rays that
 // must hit (a miss among them is a hole: the ray was aimed through the
 // interior of a closed mesh).

@@ -51,7 +51,7 @@ void AddSceneOptions(CLI::App& cmd, SceneSpec& spec, bool structures) {
   cmd.add_flag("--perfect-splits", b.perfect_splits, "Clip triangles to the node box (SAH only)");
   cmd.add_option("--min-split-gain", b.min_split_gain,
                  "SAH: a split that does not cost less than (1 - G) x the leaf counts as a bad refinement (3 on a "
-                 "path make a leaf); 0: any split cheaper than the leaf is good, the rule before session 21 (docs/kdtree.md)")
+                 "path make a leaf); 0: any split cheaper than the leaf is good, pbrt-v3's rule (docs/kdtree.md)")
       ->capture_default_str();
   b.threads = 0;
   cmd.add_option("--build-threads", b.threads,

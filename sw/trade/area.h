@@ -71,7 +71,7 @@ struct AreaOptions {
 // rt_isect_unit, rt_hit_out, rt_leaf_exit and rt_hit_merge at (E, M), plus
 // rt_list_unit, rt_mem_system, rt_thread_fsm and rt_perf_events once at their
 // defaults (their own module defaults: kUnitThreads and the rest below, not
-// rt_core's since session 29; UnitSizesNote says so). rt_fifo and rt_thread_stack are not
+// rt_core's, which are larger; UnitSizesNote says so). rt_fifo and rt_thread_stack are not
 // counted: they are inside rt_list_unit and rt_leaf_exit, whose flattened
 // numbers already include them. Neither are the small glue modules rt_core
 // instantiates itself (two rt_rr_arb).
@@ -100,8 +100,8 @@ std::string RtlHash(const std::string& source_dir);
 // parameter defaults in rtl/ (tests/trade/area_test.cpp checks them against
 // the RTL): rt_thread_fsm, rt_perf_events, rt_leaf_exit, rt_hit_merge and
 // rt_list_unit (Jobs) at kUnitThreads, rt_mem_system at kUnitCacheMshrs miss
-// registers of kUnitCacheTargets requests, no list prefetcher. Since session
-// 29 rt_core's defaults are larger (sim/core_params.def).
+// registers of kUnitCacheTargets requests, no list prefetcher. rt_core's
+// defaults are larger (sim/core_params.def).
 inline constexpr int kUnitThreads = 32;
 inline constexpr int kUnitCacheMshrs = 16;
 inline constexpr int kUnitCacheTargets = 8;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The tree speaks of the project as it is: no word of how it was developed
-# (work sessions, tracker issues, former defaults, first-person notes) in
+# (work periods, tracker numbers, earlier defaults, first-person notes) in
 # code, docs, help texts, tests or sweep files. History is git log's.
 #   tests/docs/no_history_test.sh [SOURCE_DIR]
 set -euo pipefail

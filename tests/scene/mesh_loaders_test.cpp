@@ -127,7 +127,7 @@ TEST(PlyLoader, NanCoordinateIsAnError) {
 
 TEST(PlyLoader, BrokenFilesAreErrorsWithLines) {
   TempDir dir;
-  // assimp 5.2, kdrt's former PLY reader, looped forever on this one.
+  // assimp 5.2's PLY reader loops forever on this one.
   std::string no_end = dir.Write("noend.ply", "ply\nformat ascii 1.0\nelement vertex 3\n");
   ExpectInputError([&] { LoadScene(no_end); }, no_end, 3, "no end_header");
   std::string garbage = dir.Write("garbage.PLY", "this is not a ply file at all\n");
@@ -218,7 +218,7 @@ TEST(PlyLoader, ExtraPropertiesAndElementsAreSkipped) {
 
 TEST(PlyLoader, DecimalsReadToTheSameBitsInEveryFormat) {
   // One number, one float: PLY, OFF and NFF all round to the nearest float
-  // (1.18 is 0x3f970a3d; assimp 5.2, kdrt's former PLY/OFF reader, gave
+  // (1.18 is 0x3f970a3d; assimp 5.2's PLY/OFF reader gives
   // 0x3f970a3e). A double property is rounded once, from the exact value.
   TempDir dir;
   std::string ply = dir.Write("r.ply",

@@ -385,12 +385,11 @@ TEST_F(SimCli, ListPrefetchMatchesTheFastModel) {
 }
 
 // More than 64 miss registers per cache (the fast model's register masks
-// are 128 bits since session 32, when the default core got 128 registers
-// per cache): on the default core, gears' large leaves and a slow memory
-// keep every triangle register in use at once (register 127 taken, seen in
-// the fast model), cycle for cycle in both models. The same scene-sized
-// model as SimMatchesRender's gears fp32 (the latency is not a parameter of
-// the model).
+// are 128 bits, as the default core has 128 registers per cache): on the
+// default core, gears' large leaves and a slow memory keep every triangle
+// register in use at once (register 127 taken, seen in the fast model),
+// cycle for cycle in both models. The same scene-sized model as
+// SimMatchesRender's gears fp32 (the latency is not a parameter of the model).
 TEST_F(SimCli, MoreThan64MissRegistersMatchTheFastModel) {
   const RunResult r = RunKdrt("sim gen:gears:1500 --res 24x24 --format fp32 --mem-latency 400 --model both -q -o " +
                               Path("x.png") + " --json " + Path("x.json"));
@@ -488,7 +487,7 @@ TEST_F(SimCli, AssociativeCaches) {
   EXPECT_FALSE(fs::exists(Path("b.png")));
 }
 
-// --ray-order morton (the default since session 23) issues the camera's
+// --ray-order morton (the default) issues the camera's
 // rays along the Z-order curve (sim/ray_queue.h): the RTL still returns the
 // reference's record for every ray (the hit buffer is the linear run's,
 // pixel for pixel), the fast model follows it cycle for cycle on one core and
@@ -551,7 +550,7 @@ TEST_F(SimCli, MortonRayOrder) {
   EXPECT_FALSE(fs::exists(Path("b.png")));
 }
 
-// ListStream 1 (the default since session 23; rt_list_unit,
+// ListStream 1 (the default; rt_list_unit,
 // rt_mem_system): the list unit asks for a leaf's entries a list line at a
 // time and a line register hands them on one a cycle. The RTL still returns
 // the reference's record for every ray (the same hit buffer as the core of

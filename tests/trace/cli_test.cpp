@@ -233,7 +233,7 @@ TEST_F(Cli, MinSplitGain) {
   const uint64_t plain = nodes("render", "--min-split-gain 0", 0.0f), gain = nodes("render", "--min-split-gain 0.1", 0.1f);
   EXPECT_LT(gain * 2, plain) << plain << " against " << gain;
   EXPECT_EQ(nodes("sim", "--model fast --min-split-gain 0.1", 0.1f), gain);
-  // 0.1 is the default (session 21), in render and sim alike.
+  // 0.1 is the default, in render and sim alike.
   EXPECT_EQ(nodes("render", "", 0.1f), gain);
   EXPECT_EQ(nodes("sim", "--model fast", 0.1f), gain);
   fs::remove(Path("g.json"));

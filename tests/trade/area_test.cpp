@@ -151,7 +151,7 @@ TEST_F(AreaTest, PresetsSumTheTableRows) {
 
 // The unit rows count the units at their own module defaults: kUnitThreads
 // and the rest must be what rtl/ declares, or UnitSizesNote would say the
-// wrong core; and a core of other sizes (the default since session 29) is
+// wrong core; and a core of other sizes (such as the default core) is
 // said to be not the one counted.
 int ModuleDefault(const std::string& file, const std::string& param) {
   const std::string sv = ReadText(kSource + "/rtl/" + file);
