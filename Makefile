@@ -24,11 +24,14 @@ deps:
 demo-deps:
 	@bash scripts/install-deps.sh --demo
 
-# Configuring needs only the demo's packages; `deps` comes first where it is asked for.
-demo-configure: demo-deps
-	@test -f $(BUILD)/build.ninja || cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
+# Configuring needs only the demo's packages.
+CONFIGURE = test -f $(BUILD)/build.ninja || cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
 
-configure: deps demo-configure
+demo-configure: demo-deps
+	@$(CONFIGURE)
+
+configure: deps
+	@$(CONFIGURE)
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)

@@ -487,7 +487,7 @@ TEST_F(SimCli, AssociativeCaches) {
   EXPECT_FALSE(fs::exists(Path("b.png")));
 }
 
-// --ray-order morton (the default) issues the camera's
+// --ray-order morton issues the camera's
 // rays along the Z-order curve (sim/ray_queue.h): the RTL still returns the
 // reference's record for every ray (the hit buffer is the linear run's,
 // pixel for pixel), the fast model follows it cycle for cycle on one core and
