@@ -1,31 +1,45 @@
 #!/usr/bin/env bash
-# Re-measures the README's tables that depend on the default core, into OUT/
-# (one file per table, and `times` with each step's seconds): what a change
-# of the default (core_params.def, the frame's ray order) must be followed
-# by. The fast model does the cycle tables (it is cycle-exact against the
-# RTL); the RTL runs the balls table, `kdrt trade` and the sweep example.
-# Copying the results into the README stays a person's job: each table's
-# text says what changed and why.
+# Re-measures the tables that depend on the default core into OUT/ (one
+# file per step, and `times` with each step's seconds) and writes them into
+# docs/results.md and the README's headline tables (scripts/results_md.py:
+# the blocks between <!-- results:NAME begin/end --> markers; the text
+# around them stays): what a change of the default (core_params.def, the
+# frame's ray order) must be followed by. The fast model does the cycle
+# tables (it is cycle-exact against the RTL); the RTL runs the balls runs,
+# `kdrt trade` and the sweep example.
 #   scripts/remeasure.sh [--timed-only | --no-timed] OUT [KDRT]
+#   scripts/remeasure.sh --write-only OUT
 # --timed-only: only the fast-versus-RTL speed sweeps, which
 #   must run alone on an idle machine, one point at a time;
 # --no-timed: everything else, two steps at a time (51 minutes on 2 cores
 #   with the 128-thread default core, most of it kdrt trade's RTL runs:
 #   efficiency at 128x128 and 1024x1024, secondary rays, scaling,
 #   packed images at 10k-1M, the wider traversal, the latency-200 sweep,
-#   kdrt trade, the sweep example).
+#   kdrt trade, the sweep example);
+# --write-only: measure nothing, write the docs from OUT's step outputs.
+# The docs are written only when every step succeeded; a block whose step
+# outputs OUT lacks keeps its text and is named on stderr.
 set -euo pipefail
 mode=all
 case "${1:-}" in
   --timed-only) mode=timed; shift ;;
   --no-timed) mode=untimed; shift ;;
+  --write-only) mode=write; shift ;;
 esac
 if [ $# -lt 1 ] || [ "${1:-}" = -h ] || [ "${1:-}" = --help ]; then
-  sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'
   [ $# -lt 1 ] && exit 2 || exit 0
 fi
-out=$1
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+write_docs() {
+  python3 "$root/scripts/results_md.py" "$1" --results "$root/docs/results.md" --readme "$root/README.md"
+}
+if [ "$mode" = write ]; then
+  [ -d "$1" ] || { echo "remeasure: $1: no such directory" >&2; exit 1; }
+  write_docs "$1"
+  exit
+fi
+out=$1
 kdrt=${2:-$root/build/bin/kdrt}
 [ -x "$kdrt" ] || { echo "remeasure: no kdrt at $kdrt (build first: make build)" >&2; exit 1; }
 mkdir -p "$out"
@@ -108,5 +122,7 @@ fi
 echo "remeasure: done, results in $out (times in $out/times)" >&2
 if grep -q FAILED "$out/times"; then
   grep FAILED "$out/times" >&2
+  echo "remeasure: docs not written; after a fix, rerun the step or write them anyway with --write-only $out" >&2
   exit 1
 fi
+write_docs "$out"

@@ -17,18 +17,18 @@ shift $(($# < 5 ? $# : 5))
 read_scenes "gen:balls:10000 gen:tree:10000" "$@"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "scene,bytes_per_cycle,cores,rays_per_cycle,cycles_per_ray,efficiency,l2_hit_rate,mem_bytes_per_cycle_used" > "$out.csv"
+echo "scene,res,bytes_per_cycle,cores,rays_per_cycle,cycles_per_ray,efficiency,l2_hit_rate,mem_bytes_per_cycle_used" > "$out.csv"
 for scene in "${scenes[@]}"; do
   for bw in $bws; do
     for n in $cores_list; do
       echo "scaling: $scene --mem-bw $bw --cores $n ${extra[*]:-}" >&2
       "$kdrt" sim "$scene" --res "$res" --cores "$n" --mem-bw "$bw" -q -o "$tmp/a.png" --json "$tmp/a.json" \
         "${extra[@]}" 2> "$tmp/err" || { cat "$tmp/err" >&2; exit 1; }
-      python3 - "$scene" "$bw" "$n" "$tmp/a.json" >> "$out.csv" <<'PY'
+      python3 - "$scene" "$res" "$bw" "$n" "$tmp/a.json" >> "$out.csv" <<'PY'
 import json, sys
-scene, bw, n, path = sys.argv[1:]
+scene, res, bw, n, path = sys.argv[1:]
 j = json.load(open(path))
-print("%s,%s,%s,%.6f,%.4f,%.4f,%.4f,%.4f" % (scene, bw, n, j["rays_per_cycle"], j["cycles_per_ray"],
+print("%s,%s,%s,%s,%.6f,%.4f,%.4f,%.4f,%.4f" % (scene, res, bw, n, j["rays_per_cycle"], j["cycles_per_ray"],
       j["efficiency"], j["l2"]["hit_rate"], j["memory"]["bytes_per_cycle_used"]))
 PY
     done
