@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The structure comparison of the README: `kdrt compare-accel` on
+# The structure comparison of docs/compare-accel.md: `kdrt compare-accel` on
 # every generator at 10k, 100k and 1M triangles, 256x256 camera rays, one
 # thread, each structure traced twice and the faster run kept. The 1M scenes
 # leave out the median kd-tree: its tree holds 280-940 references per

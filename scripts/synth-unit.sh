@@ -21,8 +21,7 @@
 #        around them, and the JSON adds "sram_bits" and "srams" (name, words,
 #        width of each). Every other memory (tags, stacks: read in the cycle
 #        they are addressed) is still flip-flops. The macros' own area is not
-#        a Yosys figure (README, "Core efficiency", gives a rough per-bit
-#        estimate and labels it so).
+#        a Yosys figure (docs/trade.md, "Area").
 set -euo pipefail
 
 sram=0
