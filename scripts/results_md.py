@@ -456,31 +456,21 @@ def block_readme_cores(out):
 
 # --- the steps whose output is a table already --------------------------------------------------------------------
 
-def block_verbatim(files, command):
+def block_packed(name, options, says):
+    """scripts/packed-images.sh's table as it wrote it, under the command with the scenes the table has."""
     def render(out):
-        parts = [read_text(p) for p in need(out, *files)]
-        return command + "\n\n" + "\n\n".join(parts)
+        table = read_text(need(out, name)[0])
+        scenes = []
+        for line in table.splitlines()[2:]:
+            cells = [c.strip() for c in line.strip("|").split("|")]
+            if len(cells) < 2 or not cells[0]:
+                raise BadInput("%s: not a packed-images.sh table row: %s" % (name, line))
+            scenes += [cells[0]] if cells[0] not in scenes else []
+        if not scenes:
+            raise BadInput("%s: a table without rows" % name)
+        return para("`scripts/packed-images.sh build/bin/kdrt 128x128 %s -- %s`: %s" % (" ".join(scenes), options, says),
+                    DOC_WIDTH) + "\n\n" + table
     return render
-
-
-def sweep_table(out, name, command):
-    rows = read_csv(need(out, name + "/sweep.csv")[0])
-    fixed = {"id", "scene", "format", "model", "res"}
-    results = ["rays", "cycles", "cycles_per_ray", "bound_cycles_per_ray", "efficiency", "window_bound_cycles_per_ray",
-               "rays_per_cycle", "overflows", "bytes_per_ray", "node_hit_rate", "tri_hit_rate", "sim_seconds",
-               "fast_cycles_per_ray", "fast_error", "fast_speedup"]
-    params = [c for c in rows[0] if c not in fixed and c not in results]
-    varying = [c for c in ["scene", "format"] + params if len({r[c] for r in rows}) > 1]
-    head = varying + ["cycles/ray", "bound", "efficiency", "bytes/ray", "node / tri hit"]
-    lines = [command, "", "| " + " | ".join(h.replace("_", " ") for h in head) + " |",
-             "|" + "---|" * len(varying) + "---:|" * 4 + "---|"]
-    for r in rows:
-        cells = [scene_name(r[c]) if c == "scene" else r[c] for c in varying]
-        cells += ["%.2f" % float(r["cycles_per_ray"]), "%.2f" % float(r["bound_cycles_per_ray"]),
-                  pc(float(r["efficiency"])), "%.1f" % float(r["bytes_per_ray"]),
-                  "%s / %s" % (pc(float(r["node_hit_rate"])), pc(float(r["tri_hit_rate"])))]
-        lines.append("| " + " | ".join(cells) + " |")
-    return "\n".join(lines)
 
 
 BLOCKS = {
@@ -488,23 +478,9 @@ BLOCKS = {
     "shaded": block_shaded,
     "speed": block_speed,
     "cores": block_cores,
-    "packed": block_verbatim(
-        ["packed.md"],
-        "`scripts/packed-images.sh build/bin/kdrt 128x128 SCENES -- --model fast`, SCENES balls, rings and tetra at"
-        " 10k and\n100k; each format traverses in itself:"),
-    "packed-1m": block_verbatim(
-        ["packed1m.md"],
-        "`scripts/packed-images.sh build/bin/kdrt 128x128 gen:balls:1000000 gen:rings:1000000 gen:tetra:1000000\n"
-        "gen:room:1000000 -- --model fast --timeout 50000000`:"),
-    "wider": block_verbatim(
-        ["travfmt.md"],
-        "`scripts/packed-images.sh build/bin/kdrt 128x128 SCENES -- --model fast --trav-format fp32 --stack-depth 32\n"
-        "--node-idx-width 24 --tri-idx-width 24 --addr-width 28`, SCENES as above; every format traverses in fp32:"),
-    "wider-1m": block_verbatim(
-        ["trav1m.md"],
-        "`scripts/packed-images.sh build/bin/kdrt 128x128 gen:balls:1000000 gen:tetra:1000000 gen:room:1000000 --\n"
-        "--model fast --timeout 50000000 --trav-format fp32`:"),
-    "latency-200": lambda out: sweep_table(out, "lat200", "`kdrt sweep docs/sweep-latency-200.yaml --jobs 1`:"),
+    "packed": block_packed("packed.md", "--model fast", "each format traverses in itself."),
+    "wider": block_packed("travfmt.md", "--model fast --trav-format fp32 --stack-depth 32 --node-idx-width 24 "
+                          "--tri-idx-width 24 --addr-width 28", "every format traverses in fp32."),
     "readme-efficiency": block_readme_efficiency,
     "readme-shaded": block_readme_shaded,
     "readme-speed": block_readme_speed,

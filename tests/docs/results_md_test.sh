@@ -28,6 +28,8 @@ done
 scripts/scaling.sh "$kdrt" 32x32 "1 2" "16 2" "$out/scaling" gen:balls:1000 -- "${fast[@]}" > "$out/scaling.md" \
   2> "$tmp/err"
 scripts/packed-images.sh "$kdrt" 32x32 gen:balls:1000 -- "${fast[@]}" > "$out/packed.md" 2> "$tmp/err"
+scripts/packed-images.sh "$kdrt" 32x32 gen:balls:1000 -- "${fast[@]}" --trav-format fp32 > "$out/travfmt.md" \
+  2> "$tmp/err"
 
 cp README.md "$tmp/README.md"
 mkdir -p "$tmp/docs"
@@ -103,6 +105,8 @@ expect("README cores", readme["readme-cores"], "balls 1k %.2fx at 2 cores" % up)
 expect("results.md cores", res["cores"], open(os.path.join(out, "scaling.md")).read().strip())
 # Packed images: the step's table as it wrote it.
 expect("results.md packed", res["packed"], open(os.path.join(out, "packed.md")).read().strip())
+expect("results.md packed", res["packed"], "packed-images.sh build/bin/kdrt 128x128 gen:balls:1000 -- --model fast`")
+expect("results.md wider", res["wider"], open(os.path.join(out, "travfmt.md")).read().strip())
 if errors:
     print("results_md_test: " + "\nresults_md_test: ".join(errors), file=sys.stderr)
     sys.exit(1)
