@@ -154,7 +154,7 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
   }
   const std::string log = (models_dir / (ModelName(choice, loc.quick) + ".build.log")).string();
   std::fprintf(stderr,
-               "kdrt sim: %s the simulation model %s (Verilator, once; about 1-2 minutes on 2 cores)%s\n"
+               "kdrt sim: %s the simulation model %s (Verilator, once; minutes: up to about 3 on 2 cores for a 128-thread core)%s\n"
                "kdrt sim: log in %s\n",
                loc.stale ? "sources changed since it was built: rebuilding" : "building", choice.config.Key().c_str(),
                loc.quick ? ", a quick build (KDRT_QUICK_MODELS: its C++ unoptimised, about 3x less to compile, "
@@ -272,10 +272,10 @@ std::vector<uint8_t> CoreImage(const std::vector<uint8_t>& fp32_image, fp::Forma
 
 ModelRun Simulate(const std::vector<uint8_t>& fp32_image, const std::vector<Ray>& rays, fp::Format format,
                   RunOptions run, Query query, std::optional<fp::Format> trav,
-                  std::optional<fp::Format> image_format) {
+                  std::optional<fp::Format> image_format, const ConfigOverrides& core) {
   const std::vector<uint8_t> image = CoreImage(fp32_image, image_format.value_or(format));
   const SceneRequirements req = DeriveRequirements(ImageView(image));
-  ConfigOverrides ov;
+  ConfigOverrides ov = core;
   if (trav) OverrideTravFormat(format, *trav, &ov);
   if (image_format) OverrideImageFormat(format, *image_format, &ov);
   const ConfigChoice choice = ChooseConfig(format, req, ov, run.mem_size, run.allow_overflow);

@@ -69,8 +69,10 @@ std::vector<uint8_t> CoreImage(const std::vector<uint8_t>& fp32_image, fp::Forma
 // image of its format (CoreImage of the fp32 `image`). `trav`: a core whose
 // traversal datapath is that wider format (rt_core TravE, TravM).
 // `image_format`: a core reading that narrower image (rt_core ImgE, ImgM).
+// `core`: the core parameters set by the caller (`kdrt sim`'s --threads,
+// --cache-mshrs, ...); the others are the defaults or what the scene needs.
 ModelRun Simulate(const std::vector<uint8_t>& image, const std::vector<Ray>& rays, fp::Format format,
                   RunOptions run, Query query = Query::kClosest, std::optional<fp::Format> trav = std::nullopt,
-                  std::optional<fp::Format> image_format = std::nullopt);
+                  std::optional<fp::Format> image_format = std::nullopt, const ConfigOverrides& core = {});
 
 }  // namespace kdrt::sim

@@ -18,6 +18,7 @@
 #include "setup/trace_outputs.h"
 #include "sim/core_params.h"
 #include "sim/model_runner.h"
+#include "sim/run_options.h"
 #include "tools/commands.h"
 #include "trace/hit_compare.h"
 #include "trace/precision.h"
@@ -36,6 +37,7 @@ struct ExtremesArgs {
   bool reduced = false;
   bool sim = false;
   bool quiet = false;
+  sim::ConfigOverrides core;  // with --sim: the core's parameters (kdrt sim's options)
 };
 
 std::vector<fp::Format> ParseFormats(const std::string& list) {
@@ -122,7 +124,7 @@ int Run(const ExtremesArgs& args) {
       cell.warning = req.Shortfall(fo.format, f);
       if (args.sim) {
         sim::RunOptions run;
-        const sim::ModelRun m = sim::Simulate(p.image, c.rays, fo.format, run, Query::kClosest, trav, f);
+        const sim::ModelRun m = sim::Simulate(p.image, c.rays, fo.format, run, Query::kClosest, trav, f, args.core);
         if (m.exit_code != 0) {
           throw InputError("kdrt sim failed on case '" + c.name + "' in " + f.Name() + " (exit " +
                            std::to_string(m.exit_code) + ")");
@@ -191,6 +193,9 @@ Runner AddExtremesCommand(CLI::App& app) {
   cmd->add_flag("--reduced", args->reduced, "The smaller set `make test` runs");
   cmd->add_flag("--sim", args->sim, "Also run the RTL core (kdrt sim) on every case and format and compare");
   cmd->add_flag("-q,--quiet", args->quiet, "No table on stdout");
+  // With --sim, the core's parameters as kdrt sim takes them (--threads,
+  // --cache-mshrs, ...); each case's scene sizes what is left unset.
+  sim::AddParamOptions(*cmd, args->core);
   return [cmd, args]() { return cmd->parsed() ? Run(*args) : -1; };
 }
 
