@@ -144,40 +144,12 @@ module rt_cache #(
     assign joinable[m] = key_match[m] && !done[m] && room;
     assign joinable2[m] = key_match2[m] && !done[m] && room;
   end
-  always_comb begin
-    free_valid = 1'b0;
-    free_idx = '0;
-    done_valid = 1'b0;
-    done_idx = '0;
-    pick_valid = 1'b0;
-    pick_idx = '0;
-    join_valid = 1'b0;
-    join_idx = '0;
-    join2_valid = 1'b0;
-    join2_idx = '0;
-    for (int m = Mshrs - 1; m >= 0; m--) begin
-      if (!mshr_valid_q[m]) begin
-        free_valid = 1'b1;
-        free_idx = MshrW'(m);
-      end
-      if (joinable[m]) begin
-        join_valid = 1'b1;
-        join_idx = MshrW'(m);
-      end
-      if (joinable2[m]) begin
-        join2_valid = 1'b1;
-        join2_idx = MshrW'(m);
-      end
-      if (done[m]) begin
-        done_valid = 1'b1;
-        done_idx = MshrW'(m);
-      end
-      if (sending[m]) begin
-        pick_valid = 1'b1;
-        pick_idx = MshrW'(m);
-      end
-    end
-  end
+  // Log-depth priority encoders (rtl/rt_prio_enc.sv), one per kind.
+  rt_prio_enc #(.N(Mshrs)) u_free_enc (.req_i(~mshr_valid_q), .valid_o(free_valid), .idx_o(free_idx));
+  rt_prio_enc #(.N(Mshrs)) u_join_enc (.req_i(joinable), .valid_o(join_valid), .idx_o(join_idx));
+  rt_prio_enc #(.N(Mshrs)) u_join2_enc (.req_i(joinable2), .valid_o(join2_valid), .idx_o(join2_idx));
+  rt_prio_enc #(.N(Mshrs)) u_done_enc (.req_i(done), .valid_o(done_valid), .idx_o(done_idx));
+  rt_prio_enc #(.N(Mshrs)) u_pick_enc (.req_i(sending), .valid_o(pick_valid), .idx_o(pick_idx));
 
   logic [IdxW-1:0]     hit_line, done_line;
   logic [KeyWidth-1:0] done_key;
@@ -246,26 +218,18 @@ module rt_cache #(
     assign done_ways[w] = valid_q[ld] && key_q[ld] == done_key;
     assign free_ways[w] = !valid_q[ld];
   end
-  always_comb begin
-    hit_way = '0;
-    fill_way = '0;
-    free_way = '0;
-    for (int w = Ways - 1; w >= 0; w--) begin
-      if (hit_ways[w]) hit_way = WayW'(w);
-      if (done_ways[w]) fill_way = WayW'(w);
-      if (free_ways[w]) free_way = WayW'(w);
-    end
-    if (!(|done_ways)) fill_way = (|free_ways) ? free_way : victim;
-  end
-  always_comb begin
-    victim = '0;
-    for (int w = 0; w < Ways; w++) begin
-      if (points[w]) victim = WayW'(w);
-    end
-  end
+  // The lowest way of each kind; exactly one way is the one the tree points
+  // at (`points` is one-hot).
+  logic hit_any, done_any, free_any, unused_points_any;
+  logic [WayW-1:0] done_way;
+  rt_prio_enc #(.N(Ways)) u_hit_way_enc (.req_i(hit_ways), .valid_o(hit_any), .idx_o(hit_way));
+  rt_prio_enc #(.N(Ways)) u_done_way_enc (.req_i(done_ways), .valid_o(done_any), .idx_o(done_way));
+  rt_prio_enc #(.N(Ways)) u_free_way_enc (.req_i(free_ways), .valid_o(free_any), .idx_o(free_way));
+  rt_prio_enc #(.N(Ways)) u_victim_enc (.req_i(points), .valid_o(unused_points_any), .idx_o(victim));
+  assign fill_way = done_any ? done_way : free_any ? free_way : victim;
   assign hit_line = IdxW'(32'(req_set) * Ways + 32'(hit_way));
   assign done_line = IdxW'(32'(done_set) * Ways + 32'(fill_way));
-  assign lookup_hit = |hit_ways;
+  assign lookup_hit = hit_any;
   assign lookup2_hit = |hit2_ways;
 
   // The pseudo-LRU tree of each set, one word per set: read at the

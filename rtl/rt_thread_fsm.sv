@@ -16,7 +16,8 @@
 // and the tests issued whose results are not back (issue_i, retire_i; both in
 // one cycle leave it as it is); it leaves LEAF in the cycle after both are
 // zero; setup_i (a new ray's constants are written, in SETUP) zeroes both.
-// alloc_idx_o is the lowest free thread, the one alloc_i takes.
+// alloc_idx_o is the lowest free thread, the one alloc_i takes (a log-depth
+// priority encoder, rtl/rt_prio_enc.sv).
 `default_nettype none
 
 module rt_thread_fsm #(
@@ -75,13 +76,14 @@ module rt_thread_fsm #(
 
   logic [Threads-1:0] is_setup, is_wait, is_trav, is_leaf;
   always_comb begin
-    alloc_idx_o = '0;
-    for (int t = Threads - 1; t >= 0; t--) begin
+    for (int t = 0; t < Threads; t++) begin
       {done_o[t], exit_o[t], is_leaf[t], is_trav[t], is_wait[t], fetch_o[t], is_setup[t], free_o[t]} =
           8'b1 << state_q[t];
-      if (free_o[t]) alloc_idx_o = ThW'(t);
     end
   end
+  // The lowest free thread (0 when none is free), in log2(Threads) levels.
+  logic unused_any_free;
+  rt_prio_enc #(.N(Threads)) u_alloc_enc (.req_i(free_o), .valid_o(unused_any_free), .idx_o(alloc_idx_o));
 
   // Each event as a one-hot vector of threads.
   function automatic logic [Threads-1:0] event_threads(input logic en, input logic [ThW-1:0] idx);
