@@ -221,7 +221,7 @@ nlohmann::json PhysicalBlock(const nlohmann::json& core, const std::string& path
   p["scaled"] = scaled;
   nlohmann::json notes = core.value("notes", nlohmann::json::array());
   notes.push_back(
-      "scaled: the 180 nm figures times Stillmaker & Baas's factors; the SRAM area scaled like the logic's; 28 nm "
+      "scaled: the 180 nm figures times Stillmaker & Baas's factors; the SRAM area and access time scaled like the logic's; 28 nm "
       "is interpolated between the paper's 32 and 20 nm nodes");
   p["notes"] = notes;
   return p;
