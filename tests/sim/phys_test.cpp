@@ -229,9 +229,9 @@ TEST(PhysArithmetic, MalformedFieldsNameTheFile) {
 
 // Two real syntheses: more threads, other unit parameters and areas. A
 // small fp16 core (4 or 8 threads, 16-line caches, 4 miss registers) still
-// takes scripts/synth-core.sh minutes (the units that do not depend on
-// Threads come from the shared unit cache the second time; measured: 36 min
-// for both on 2 shared cores), so KDRT_LONG only.
+// takes scripts/synth-core.sh many minutes (36 for both on 2 shared cores:
+// the tag width follows Threads, so few units come from the shared unit
+// cache the second time), so KDRT_LONG only.
 TEST_F(PhysCli, ThreadsChangeTheSynthesis) {
   if (!LongRun()) GTEST_SKIP() << "two syntheses of minutes each: KDRT_LONG=1 (make test-long)";
   const std::string common = std::string("sim ") + kScene +
