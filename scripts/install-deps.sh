@@ -18,6 +18,7 @@ case "${1:-}" in
   "")
     PACKAGES+=(
       yosys     # make synth, kdrt trade's on-demand synthesis
+      opensta qflow-tech-osu018  # make synth's physical flow: timing, the OSU 0.18 um cells
       chromium  # the screenshot test of the kdrt trade page
       python3 python3-yaml python3-distributed  # kdrt sweep: the spec, the Dask cluster
     )

@@ -16,7 +16,7 @@
 # cell, no load, no wires); crit_path: its startpoint and endpoint, a
 # register's name or a port's.
 # Usage: scripts/synth-phys.sh [--period NS] [--json OUT.json] [--keep DIR]
-#          [--sram] UNIT [NAME=VALUE...]        (--help: this text)
+#          [--sram] [--glue] UNIT [NAME=VALUE...]   (--help: this text)
 #   --period NS  clock period and abc's delay target in ns (default 5)
 #   --json OUT   write the JSON to OUT (beside it, then renamed) instead of
 #                standard output
@@ -27,6 +27,9 @@
 #                netlist, their pins become ideal ports of the timed netlist,
 #                and "srams" lists them (name, words, width); their own area
 #                is not in area_um2
+#   --glue       UNIT's own logic only: its submodule instances are cut
+#                out (their pins become ideal ports of the timed netlist),
+#                e.g. rt_core's thread table without the units it feeds
 #   NAME=VALUE   parameters of UNIT, e.g. E=8 M=23 (fp32), N=32
 #   YOSYS=path, STA=path, LIBERTY=path: other tools or another Liberty file.
 # On failure: exit status 1, one line saying what failed on stderr (then the
@@ -37,9 +40,9 @@ usage() {
   sed -n '/^# Usage:/,/^# On failure/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'
 }
 die() { echo "synth-phys: $*" >&2; exit 1; }
-bad_usage() { echo "synth-phys: $*" >&2; echo "usage: $0 [--period NS] [--json OUT.json] [--keep DIR] [--sram] UNIT [NAME=VALUE...]   (--help)" >&2; exit 2; }
+bad_usage() { echo "synth-phys: $*" >&2; echo "usage: $0 [--period NS] [--json OUT.json] [--keep DIR] [--sram] [--glue] UNIT [NAME=VALUE...]   (--help)" >&2; exit 2; }
 
-period=5 out="" keep="" sram=0
+period=5 out="" keep="" sram=0 glue=0
 while [ "$#" -gt 0 ]; do
   case "$1" in
     -h | --help) usage; exit 0 ;;
@@ -50,6 +53,7 @@ while [ "$#" -gt 0 ]; do
     --keep) [ "$#" -ge 2 ] || bad_usage "--keep needs a directory"; keep="$2"; shift 2 ;;
     --keep=*) keep="${1#*=}"; shift ;;
     --sram) sram=1; shift ;;
+    --glue) glue=1; shift ;;
     --) shift; break ;;
     -*) bad_usage "$1: unknown option" ;;
     *) break ;;
@@ -63,17 +67,12 @@ if ! [[ "$period" =~ ^[0-9]+(\.[0-9]+)?$ ]] || ! awk -v p="$period" 'BEGIN { exi
   bad_usage "--period $period: expected a positive number of ns, e.g. 5 or 2.5"
 fi
 period_ps=$(awk -v p="$period" 'BEGIN { printf "%d", p * 1000 + 0.5 }')
-chp_set="" params_json=""
-for kv in "$@"; do
-  if ! [[ "$kv" =~ ^[A-Za-z][A-Za-z0-9]*=[0-9]+$ ]]; then
-    bad_usage "$kv: expected NAME=VALUE (a parameter and a number)"
-  fi
-  chp_set="$chp_set -set ${kv%%=*} ${kv#*=}"
-  params_json="$params_json${params_json:+, }\"${kv%%=*}\": ${kv#*=}"
-done
-
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 RTL="$ROOT/rtl"
+# shellcheck source=synth-common.sh
+. "$ROOT/scripts/synth-common.sh"
+synth_parse_params synth-phys "$@"
+chp_set="$SYNTH_CHP_SET" params_json="$SYNTH_PARAMS_JSON"
 YOSYS="${YOSYS:-yosys}"
 STA="${STA:-sta}"
 LIB="${LIBERTY:-/usr/share/qflow/tech/osu018/osu018_stdcells.lib}"
@@ -99,8 +98,6 @@ trap 'rm -rf "$WORK"; if [ -n "$tmp_json" ]; then rm -f "$tmp_json"; fi' EXIT
 ylog="$WORK/yosys.log"
 net="$WORK/$unit.v"
 
-chp=""
-if [ -n "$chp_set" ]; then chp="chparam$chp_set $unit"; fi
 # abc's delay target is the period; -constr makes abc's liberty script end in
 # `buffer; upsize; dnsize` (fanout buffering and gate sizing for that target).
 # Every input of the mapped logic (ports and flip-flop outputs) is taken as
@@ -111,13 +108,8 @@ printf 'set_driving_cell BUFX2\nset_load 9\n' > "$WORK/abc.constr"
 # memory_map; here they are then cut out (their data outputs become input
 # ports, their address, data and enable inputs output ports) before mapping.
 if [ "$sram" = 1 ]; then
-  lines='t:$mem_v2 n:*data_q %i'
-  flow="synth -flatten -top $unit -run begin:fine
-    opt -fast -full
-    memory_map $lines %n
-    opt -full
-    techmap
-    opt -fast
+  lines="$SYNTH_SRAM_LINES"
+  flow="$(synth_sram_flow "$unit")
     select -assert-none t:\$*latch* t:\$_DLATCH* t:\$_SR_* t:\$sr
     select -assert-none t:\$mem_v2 $lines %d
     tee -q -o $WORK/unit.mem dump $lines
@@ -129,9 +121,20 @@ else
   flow="synth -flatten -top $unit
     select -assert-none t:\$*latch* t:\$_DLATCH* t:\$_SR_* t:\$sr"
 fi
+# The top keeps its name (a parameterized top is elaborated as $paramod...).
+# With --glue, the submodule instances become ports (expose -evert), and the
+# submodules are then no longer part of the design.
+prep="hierarchy -top $unit
+    rename -top $unit"
+if [ "$glue" = 1 ]; then
+  prep="$prep
+    select -set subs $unit/c:* $unit/t:\$* %d $unit/t:\$paramod* %u
+    expose -evert @subs
+    hierarchy -top $unit"
+fi
 if ! "$YOSYS" -q -l "$ylog" -p "
-    read_verilog -sv $RTL/kdrt_fp_pkg.sv $RTL/kdrt_pkg.sv $(ls "$RTL"/*.sv | grep -v _pkg.sv | tr '\n' ' ')
-    $chp
+    $(synth_read "$RTL" "$unit" "$chp_set")
+    $prep
     $flow
     dfflibmap -liberty $LIB
     abc -liberty $LIB -D $period_ps -constr $WORK/abc.constr
@@ -164,29 +167,23 @@ ffs=$(awk -v ff="$ff_cells" '
   /Chip area/ { exit }
   NF == 2 && ($1 in is_ff) { s += $2 }
   END { print s + 0 }' "$WORK/unit.stat")
+# A unit with no logic under synthesis (a simulation-only checker): no cells,
+# no area, no path; crit_ns 0 and the path's ends "-".
+empty=0
+if [ "${cells:-}" = 0 ]; then area=0 empty=1; fi
 [ -n "$cells" ] && [ -n "$area" ] || die "$unit: no cell count or area in the Yosys output"
 
 srams_json=""
 if [ "$sram" = 1 ]; then
-  # Each kept array: its name, words and width, and a check that it is what
-  # an SRAM macro can be (every read port registered, one write port).
-  srams=$(awk '
-    /^ *cell \$mem_v2 / { name = ""; words = 0; width = 0; rclk = ""; wr = 0 }
-    /parameter .MEMID / { name = $3; gsub(/["\\]/, "", name) }
-    /parameter .SIZE / { words = $3 }
-    /parameter .WIDTH / { width = $3 }
-    /parameter .RD_CLK_ENABLE / { rclk = $3 }
-    /parameter .WR_PORTS / { wr = $3 }
-    /^ *end$/ && name != "" {
-      sync = (rclk ~ /^[0-9]+.[1]+$/) && wr == 1
-      printf "%s %d %d %d\n", name, words, width, sync; name = "" }
-  ' "$WORK/unit.mem")
-  if echo "$srams" | awk 'NF && $4 != 1 { bad = 1 } END { exit !bad }'; then
-    die "$unit: a line array is not an SRAM macro (an unregistered read or more than one write port): $(echo "$srams" | tr '\n' ';')"
-  fi
-  srams_json=$(echo "$srams" | awk 'NF { printf "%s{\"name\": \"%s\", \"words\": %d, \"width\": %d}", sep, $1, $2, $3; sep = ", " }')
+  # Each kept array: its name, words and width (and a check that it is what
+  # an SRAM macro can be).
+  srams=$(synth_sram_list synth-phys "$unit" "$WORK/unit.mem")
+  srams_json=$(synth_sram_json "$srams")
 fi
 
+if [ "$empty" = 1 ]; then
+  crit=0 from=- to=-
+else
 # OpenSTA: the clock on clk_i (a virtual clock for a unit without one), every
 # other port constrained to it with delay 0.
 cat > "$WORK/sta.tcl" << EOF
@@ -224,6 +221,7 @@ fi
 name_of() { local n="${1#\\}"; echo "${n%_reg}"; }
 from=$(name_of "$from") to=$(name_of "$to")
 
+fi
 json=$(printf '{"unit": "%s", "params": {%s}, "library": "%s", "area_um2": %s, "cells": %s, "flip_flops": %s, "crit_ns": %s, "crit_path": {"from": "%s", "to": "%s"}, "period_target_ns": %s, "srams": [%s]}' \
   "$unit" "$params_json" "$library" "$area" "$cells" "$ffs" "$crit" "$from" "$to" "$period" "$srams_json")
 if [ -n "$keep" ]; then

@@ -35,15 +35,6 @@ if [ "$#" -lt 4 ]; then
 fi
 unit="$1" e="$2" m="$3" out="$4"
 shift 4
-extra_set="" extra_json=""
-for kv in "$@"; do
-  if ! [[ "$kv" =~ ^[A-Za-z][A-Za-z0-9]*=[0-9]+$ ]]; then
-    echo "$0: $kv: expected NAME=VALUE (a parameter and a number)" >&2
-    exit 2
-  fi
-  extra_set="$extra_set -set ${kv%%=*} ${kv#*=}"
-  extra_json="$extra_json${extra_json:+, }\"${kv%%=*}\": ${kv#*=}"
-done
 if { [ "$e" = - ] && [ "$m" != - ]; } || { [ "$e" != - ] && [ "$m" = - ]; }; then
   echo "$0: E and M must both be numbers or both be '-'" >&2
   exit 2
@@ -51,6 +42,10 @@ fi
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 RTL="$ROOT/rtl"
+# shellcheck source=synth-common.sh
+. "$ROOT/scripts/synth-common.sh"
+synth_parse_params synth-unit "$@"
+extra_set="$SYNTH_CHP_SET" extra_json="$SYNTH_PARAMS_JSON"
 YOSYS="${YOSYS:-yosys}"
 if ! command -v "$YOSYS" > /dev/null; then
   echo "synth-unit: $YOSYS: command not found (install Yosys, or set YOSYS=path)" >&2
@@ -60,20 +55,13 @@ WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 log="$WORK/yosys.log"
 
-chp=""
-if [ "$e" != - ]; then chp="chparam -set E $e -set M $m$extra_set $unit";
-elif [ -n "$extra_set" ]; then chp="chparam$extra_set $unit"; fi
+chp_set="$extra_set"
+if [ "$e" != - ]; then chp_set=" -set E $e -set M $m$extra_set"; fi
 # The synthesis: Yosys' generic `synth`, or with --sram the same script with
 # the line arrays left out of its memory_map step (Yosys 0.23's fine stage
 # otherwise: opt, techmap, abc).
 if [ "$sram" = 1 ]; then
-  lines='t:$mem_v2 n:*data_q %i'
-  flow="synth -flatten -top $unit -run begin:fine
-    opt -fast -full
-    memory_map $lines %n
-    opt -full
-    techmap
-    opt -fast
+  flow="$(synth_sram_flow "$unit")
     abc -fast
     opt -fast
     hierarchy -check
@@ -83,8 +71,7 @@ else
   flow="synth -flatten -top $unit"
 fi
 if ! "$YOSYS" -q -l "$log" -p "
-    read_verilog -sv $RTL/kdrt_fp_pkg.sv $RTL/kdrt_pkg.sv $(ls $RTL/*.sv | grep -v _pkg.sv | tr '\n' ' ')
-    $chp
+    $(synth_read "$RTL" "$unit" "$chp_set")
     $flow
     select -assert-none t:\$*latch* t:\$_DLATCH* t:\$_SR_* t:\$sr
     tee -o $WORK/unit.stat stat
@@ -99,27 +86,12 @@ fi
 cells=$({ grep -m1 -E 'Number of cells:' "$WORK/unit.stat" || true; } | awk '{print $NF}')
 sram_json=""
 if [ "$sram" = 1 ]; then
-  # Each kept array: its name, words and width, and a check that it is what
-  # an SRAM macro can be (every read port registered, one write port).
-  srams=$(awk '
-    /^ *cell \$mem_v2 / { name = ""; words = 0; width = 0; rclk = ""; wr = 0 }
-    /parameter .MEMID / { name = $3; gsub(/["\\]/, "", name) }
-    /parameter .SIZE / { words = $3 }
-    /parameter .WIDTH / { width = $3 }
-    /parameter .RD_CLK_ENABLE / { rclk = $3 }
-    /parameter .WR_PORTS / { wr = $3 }
-    /^ *end$/ && name != "" {
-      sync = (rclk ~ /^[0-9]+.[1]+$/) && wr == 1
-      printf "%s %d %d %d\n", name, words, width, sync; name = "" }
-  ' "$WORK/unit.mem")
-  if echo "$srams" | awk 'NF && $4 != 1 { bad = 1 } END { exit !bad }'; then
-    echo "synth-unit: $unit: a line array is not an SRAM macro (an unregistered read or more than one write port):" >&2
-    echo "$srams" >&2
-    exit 1
-  fi
+  # Each kept array: its name, words and width (and a check that it is what
+  # an SRAM macro can be).
+  srams=$(synth_sram_list synth-unit "$unit" "$WORK/unit.mem")
   macros=$(echo "$srams" | awk 'NF { n++ } END { print n + 0 }')
   bits=$(echo "$srams" | awk 'NF { s += $2 * $3 } END { print s + 0 }')
-  list=$(echo "$srams" | awk 'NF { printf "%s{\"name\": \"%s\", \"words\": %d, \"width\": %d}", sep, $1, $2, $3; sep = ", " }')
+  list=$(synth_sram_json "$srams")
   cells=$((cells - macros))
   sram_json=", \"sram_bits\": $bits, \"srams\": [$list]"
 fi

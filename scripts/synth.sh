@@ -1,10 +1,16 @@
 #!/usr/bin/env bash
-# Generic Yosys synthesis of the (E, M) floating-point units and the core's
-# units for each preset (units without E and M once, default parameters), each
-# by scripts/synth-unit.sh: fails if any latch is inferred, prints a table
-# (cells, flip-flops, logic depth = longest path in gates between
-# registers/ports from `ltp -noff`) and writes it to docs/synth-table.md.
-# Usage: scripts/synth.sh   (from anywhere; JOBS=n to change parallelism)
+# Synthesis of the (E, M) floating-point units and the core's units for each
+# preset (units without E and M once, default parameters): generic Yosys by
+# scripts/synth-unit.sh (fails if any latch is inferred; cells, flip-flops,
+# logic depth = longest path in gates between registers/ports from
+# `ltp -noff`) and the OSU 0.18 um cells by scripts/synth-phys.sh (area,
+# critical path); then the default core, every unit at the parameters rt_core
+# gives it, by scripts/synth-core.sh (cached in build/synth-core/default, so
+# a second run only reads it). Prints the tables and writes them to
+# docs/synth-table.md.
+# Usage: scripts/synth.sh   (from anywhere; JOBS=n to change parallelism;
+#        SYNTH_CORE_DIR=dir for the core's cache; CORE_MEM_GB, CORE_TIME_MIN:
+#        synth-core.sh's caps per synthesis)
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -12,7 +18,8 @@ YOSYS="${YOSYS:-yosys}"
 JOBS="${JOBS:-2}"
 OUT_MD="$ROOT/docs/synth-table.md"
 WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
+core_pid=""
+trap 'if [ -n "$core_pid" ]; then kill "$core_pid" 2> /dev/null || true; fi; rm -rf "$WORK"' EXIT
 
 UNITS=(fp_add fp_mul fp_div fp_cmp fp_from_f32 fp_to_f32 fp_nudge fp_ldexp rt_trav_unit rt_clip_unit
        rt_ray_setup rt_isect_unit rt_hit_out rt_leaf_exit rt_hit_merge)
@@ -27,7 +34,7 @@ read -r -a FORMATS <<< "$(sed -n 's/^set(KDRT_PRESETS \(.*\))$/\1/p' "$(dirname 
 
 run_one() {  # run_one <unit> <name> <E> <M>: writes $WORK/<unit>_<name>.{log,row}; E "-": defaults
   local unit="$1" name="$2" e="$3" m="$4"
-  local json="$WORK/${unit}_${name}.json"
+  local json="$WORK/${unit}_${name}.json" phys="$WORK/${unit}_${name}.phys.json"
   local sram=()
   if [[ "$SRAM_UNITS" == *" $unit "* ]]; then sram=(--sram); fi
   # synth-unit.sh says why it failed (the end of the Yosys log) on stderr.
@@ -35,16 +42,32 @@ run_one() {  # run_one <unit> <name> <E> <M>: writes $WORK/<unit>_<name>.{log,ro
     echo "FAIL" > "$WORK/${unit}_${name}.row"
     return 0
   fi
-  local cells ffs depth bits
+  local em=()
+  if [ "$e" != - ]; then em=("E=$e" "M=$m"); fi
+  if ! nice -n 10 "$SYNTH_PHYS" "${sram[@]}" --json "$phys" "$unit" "${em[@]}" >> "$WORK/${unit}_${name}.log" 2>&1; then
+    echo "FAIL" > "$WORK/${unit}_${name}.row"
+    return 0
+  fi
+  local cells ffs depth bits area crit
   cells=$(sed -n 's/.*"cells": \([0-9]*\).*/\1/p' "$json")
   ffs=$(sed -n 's/.*"flip_flops": \([0-9]*\).*/\1/p' "$json")
   depth=$(sed -n 's/.*"depth": \([0-9]*\).*/\1/p' "$json")
   bits=$(sed -n 's/.*"sram_bits": \([0-9]*\).*/\1/p' "$json")
-  echo "$cells $ffs $depth ${bits:-0}" > "$WORK/${unit}_${name}.row"
+  area=$(sed -n 's/.*"area_um2": \([0-9]*\).*/\1/p' "$phys")
+  crit=$(sed -n 's/.*"crit_ns": \([0-9.]*\).*/\1/p' "$phys")
+  echo "$cells $ffs $depth ${bits:-0} $area $crit" > "$WORK/${unit}_${name}.row"
 }
 export -f run_one
 SYNTH_UNIT="$ROOT/scripts/synth-unit.sh"
-export SYNTH_UNIT YOSYS WORK SRAM_UNITS
+SYNTH_PHYS="$ROOT/scripts/synth-phys.sh"
+export SYNTH_UNIT SYNTH_PHYS YOSYS WORK SRAM_UNITS
+
+# The default core: in the background from the start (its largest units take
+# the longest), one synthesis at a time beside the unit table's jobs.
+CORE_DIR="${SYNTH_CORE_DIR:-$ROOT/build/synth-core/default}"
+"$ROOT/scripts/synth-core.sh" --out "$CORE_DIR" --table --mem-gb "${CORE_MEM_GB:-10}" \
+  --time-min "${CORE_TIME_MIN:-60}" > "$WORK/core.md" 2> "$WORK/core.log" &
+core_pid=$!
 
 jobs_list=()
 for unit in "${UNITS[@]}"; do
@@ -84,40 +107,57 @@ latency() {  # documented latency of <unit> for mantissa bits <m>
 
 fail=0
 {
-  echo "| unit | preset | latency (cycles) | cells | flip-flops | logic depth (gates) | SRAM bits |"
-  echo "|---|---|---:|---:|---:|---:|---:|"
+  echo "| unit | preset | latency (cycles) | cells | flip-flops | logic depth (gates) | SRAM bits | area (um^2) | critical (ns) |"
+  echo "|---|---|---:|---:|---:|---:|---:|---:|---:|"
   for unit in "${UNITS[@]}"; do
     for fmt in "${FORMATS[@]}"; do
       IFS=: read -r name e m <<< "$fmt"
       row=$(cat "$WORK/${unit}_${name}.row")
       if [ "$row" = FAIL ]; then
-        echo "| $unit | $name | - | FAILED (latch or synthesis error) | | | |"
+        echo "| $unit | $name | - | FAILED (latch or synthesis error) | | | | | |"
         fail=1
         continue
       fi
-      read -r cells ffs depth bits <<< "$row"
-      echo "| $unit | $name | $(latency "$unit" "$m") | $cells | $ffs | $depth | $bits |"
+      read -r cells ffs depth bits area crit <<< "$row"
+      echo "| $unit | $name | $(latency "$unit" "$m") | $cells | $ffs | $depth | $bits | $area | $crit |"
     done
   done
   for unit in "${PLAIN_UNITS[@]}"; do
     row=$(cat "$WORK/${unit}_default.row")
     if [ "$row" = FAIL ]; then
-      echo "| $unit | defaults | - | FAILED (latch or synthesis error) | | | |"
+      echo "| $unit | defaults | - | FAILED (latch or synthesis error) | | | | | |"
       fail=1
       continue
     fi
-    read -r cells ffs depth bits <<< "$row"
-    echo "| $unit | defaults | $(latency "$unit" 0) | $cells | $ffs | $depth | $bits |"
+    read -r cells ffs depth bits area crit <<< "$row"
+    echo "| $unit | defaults | $(latency "$unit" 0) | $cells | $ffs | $depth | $bits | $area | $crit |"
   done
 } > "$WORK/table.md"
 
 cat "$WORK/table.md"
+echo "synth: waiting for the default core (scripts/synth-core.sh, log in $CORE_DIR/logs)"
+if ! wait "$core_pid"; then
+  cat "$WORK/core.log"
+  echo "synth: FAILED: the default core (scripts/synth-core.sh)"
+  exit 1
+fi
+grep -E 'ESTIMATED|done in|cached' "$WORK/core.log" | sed 's/^/  /' || true
+cat "$WORK/core.md"
 {
-  echo "<!-- Generated by scripts/synth.sh (Yosys generic synth -flatten; depth from"
-  echo "     ltp -noff: gates on the longest register-to-register path; rt_mem_system"
-  echo "     with --sram: its caches' line arrays are SRAM macros, counted in the last"
-  echo "     column and not in the cells). -->"
+  echo "<!-- Generated by scripts/synth.sh. Units: Yosys generic synth -flatten (cells,"
+  echo "     flip-flops; depth from ltp -noff: gates on the longest register-to-register"
+  echo "     path) and scripts/synth-phys.sh (OSU 0.18 um cells, 5 ns target: cell area,"
+  echo "     critical path by OpenSTA, ideal ports, no wires); rt_mem_system with --sram:"
+  echo "     its caches' line arrays are SRAM macros, counted in the SRAM bits column and"
+  echo "     not in the cells or the area. The default core: scripts/synth-core.sh. -->"
   cat "$WORK/table.md"
+  echo
+  echo "## The default core"
+  echo
+  echo "Every unit rt_core instantiates at its default parameters, as rt_core gives them"
+  echo "(scripts/synth-core.sh; docs/physical.md explains the columns):"
+  echo
+  cat "$WORK/core.md"
 } > "$OUT_MD"
 
 if [ "$fail" -ne 0 ]; then

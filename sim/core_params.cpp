@@ -54,6 +54,15 @@ std::string Reason(const CoreParam& p, const SceneRequirements& req) {
   }
 }
 
+void CheckCacheWays(const CoreConfig& c) {
+  for (const Param lines : {kNodeCacheLines, kListCacheLines, kTriCacheLines}) {
+    if (c[kCacheWays] > c[lines]) {
+      throw InputError("--cache-ways " + std::to_string(c[kCacheWays]) + ": more ways than the " +
+                       std::to_string(c[lines]) + " " + kCoreParams[lines].what + " (a set cannot be larger)");
+    }
+  }
+}
+
 }  // namespace
 
 int BitsFor(uint64_t max_value) {
@@ -144,12 +153,7 @@ void CheckConfigCovers(const CoreConfig& c, const SceneRequirements& req, uint64
     if (p.rule == SceneRule::kTreeDepth && allow_overflow) continue;
     throw InputError(std::string(p.what) + " " + std::to_string(c.value[i]) + " is too small: " + Reason(p, req));
   }
-  for (const Param lines : {kNodeCacheLines, kListCacheLines, kTriCacheLines}) {
-    if (c[kCacheWays] > c[lines]) {
-      throw InputError("--cache-ways " + std::to_string(c[kCacheWays]) + ": more ways than the " +
-                       std::to_string(c[lines]) + " " + kCoreParams[lines].what + " (a set cannot be larger)");
-    }
-  }
+  CheckCacheWays(c);
   if (mem_size > (uint64_t{1} << c[kAddrWidth])) {
     throw InputError("--mem-size " + std::to_string(mem_size) + " exceeds what " + std::to_string(c[kAddrWidth]) +
                      " address bits reach");
@@ -158,6 +162,18 @@ void CheckConfigCovers(const CoreConfig& c, const SceneRequirements& req, uint64
     throw InputError("the modelled memory of " + std::to_string(mem_size) + " bytes is too small: the scene's " +
                      "memory image needs " + std::to_string(req.image_bytes) + " bytes");
   }
+}
+
+CoreConfig ConfigWithoutScene(fp::Format format, const ConfigOverrides& ov) {
+  CoreConfig c = DefaultConfig(format);
+  for (int i = 0; i < kParamCount; ++i) {
+    if (!ov.Has(i)) continue;
+    CheckOverride(kCoreParams[i], ov.value[i]);
+    c.value[i] = ov.value[i];
+  }
+  CheckImageFormat(c.Format(), c.ImageFormat());
+  CheckCacheWays(c);
+  return c;
 }
 
 ConfigChoice ChooseConfig(fp::Format format, const SceneRequirements& req, const ConfigOverrides& ov,

@@ -123,6 +123,13 @@ struct ConfigChoice {
 ConfigChoice ChooseConfig(fp::Format format, const SceneRequirements& req, const ConfigOverrides& ov,
                           uint64_t mem_size, bool allow_overflow);
 
+// Without a scene (kdrt synth with no SCENE): rt_core's defaults of the
+// format with the overrides on top, checked as ChooseConfig checks them. A
+// scene may need other widths (ChooseConfig sizes them for it), so this is
+// the configuration `kdrt sim` runs only when the scene fits these values and
+// either no override is given or the overrides name every scene-sized one.
+CoreConfig ConfigWithoutScene(fp::Format format, const ConfigOverrides& ov);
+
 // Throws InputError unless the RTL can traverse in `trav` (rt_core TravE,
 // TravM: at most fp32; kdrt render --trav-format takes wider ones).
 void CheckRtlTravFormat(const fp::Format& trav);

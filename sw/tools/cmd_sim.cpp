@@ -9,6 +9,7 @@
 // RTL's hit records.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 
@@ -20,10 +21,12 @@
 #include "setup/shaded_frame.h"
 #include "setup/trace_outputs.h"
 #include "sim/model_runner.h"
+#include "sim/phys.h"
 #include "sim/ray_queue.h"
 #include "sim/run_options.h"
 #include "sim/sim_report.h"
 #include "tools/commands.h"
+#include "tools/core_config.h"
 #include "tools/scene_options.h"
 #include "trace/tracer.h"
 
@@ -36,18 +39,16 @@ struct SimArgs {
   std::string out;
   std::string hits;
   std::string json;
-  std::string format = "fp32";
-  std::string trav_format;  // empty: --format
-  std::string image_format;  // empty: --format
+  CoreConfigArgs core;  // --format, --trav-format, --image-format and the parameter options
   std::string rays;
   std::string camera;
   sim::RunOptions run;
   bool ray_order_given = false;  // --ray-order on the command line (else: morton for a frame, a ray file's own)
-  sim::ConfigOverrides overrides;
   bool quiet = false;
   bool strict = false;
   bool which_model = false;  // print the model choice and stop
   bool build_model = false;  // build the model if needed and stop
+  bool synth = false;        // synthesize the configuration first when build/phys has none
   std::string model = "rtl";  // rtl, fast or both
   ShadingArgs shading;
 };
@@ -56,6 +57,35 @@ struct SimArgs {
 struct PassFailed {
   int exit_code;
 };
+
+// The report's "physical" block: the synthesis of exactly this configuration,
+// or null and a line on stderr saying there is none. Estimated units are
+// warnings too.
+void AddPhysical(const nlohmann::json& core_json, const sim::CoreConfig& config, int cores, bool shaded,
+                 nlohmann::json* report) {
+  nlohmann::json& r = *report;
+  if (core_json.is_null()) {
+    r["physical"] = nullptr;
+    std::fprintf(stderr, "kdrt sim: %s\n", sim::NoSynthesisLine(config).c_str());
+    return;
+  }
+  // One core's cycles per ray: several cores share the rays, so the
+  // system's cycles per ray times N.
+  const double cpr = r["cycles_per_ray"].get<double>() * std::max(1, cores);
+  nlohmann::json p = sim::PhysicalBlock(core_json, sim::PhysPath(config), config, cpr);
+  if (cores > 0) {
+    p["notes"].push_back("--cores " + std::to_string(cores) +
+                         ": the rate and the area are one core's; the L2 and the wires between cores are in neither");
+  }
+  if (shaded) p["notes"].push_back("--shade: the rate is the primary rays'; the passes are in \"passes\"");
+  for (const auto& e : p["estimated_units"]) {
+    const std::string w = "physical: " + e["unit"].get<std::string>() + " is estimated (" +
+                          e["method"].get<std::string>() + "), not synthesized";
+    std::fprintf(stderr, "kdrt sim: warning: %s\n", w.c_str());
+    r["warnings"].push_back(w);
+  }
+  r["physical"] = std::move(p);
+}
 
 int RunSim(SimArgs args) {
   sim::CheckRunOptions(args.run);
@@ -67,31 +97,17 @@ int RunSim(SimArgs args) {
   if (args.model == "fast" && (!args.run.trace.empty() || args.run.systemc)) {
     throw InputError("--model fast: no waveform or --systemc (the fast model is plain C++, not the RTL)");
   }
-  const fp::Format format = fp::ParseFormat(args.format);
-  if (format.IsFp64()) {
-    throw InputError("--format fp64: no RTL model computes in fp64 (it is the software reference: kdrt render "
-                     "--format fp64)");
-  }
-  if (!args.trav_format.empty()) {
-    // A core with a wider traversal datapath (rt_core TravE, TravM): its own
-    // model, sized for the scene like any non-default parameter.
-    const fp::Format trav = fp::ParseFormat(args.trav_format);
-    CheckTravFormat(format, trav);
-    sim::OverrideTravFormat(format, trav, &args.overrides);
-  }
-  // A core reading a narrower image (rt_core ImgE, ImgM): splits and
-  // vertices stored in fewer bits, widened exactly on load.
-  const fp::Format image_format = args.image_format.empty() ? format : fp::ParseFormat(args.image_format);
-  sim::OverrideImageFormat(format, image_format, &args.overrides);
+  const CoreFormats formats = ResolveFormats(args.core);
+  const fp::Format format = formats.format, image_format = formats.image_format;
   const PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);
-  // The core reads the image of its own format, or of --image-format
-  // (docs/memory-image.md).
-  const std::vector<uint8_t> core_image = sim::CoreImage(p.image, image_format);
-  const sim::SceneRequirements req = sim::DeriveRequirements(ImageView(core_image));
-  const sim::ConfigChoice choice =
-      sim::ChooseConfig(format, req, args.overrides, args.run.mem_size, args.run.allow_overflow);
+  const SceneCore sc = ChooseSceneCore(formats, p.image, args.run.mem_size, args.run.allow_overflow);
+  const std::vector<uint8_t>& core_image = sc.core_image;
+  const sim::SceneRequirements& req = sc.req;
+  const sim::ConfigChoice& choice = sc.choice;
   const sim::ModelLocation loc = sim::LocateModel(choice);
+  // A corrupt core.json stops here, before anything runs or is written.
+  nlohmann::json core_json = sim::ReadCoreJson(choice.config);
   if (args.which_model) {
     std::printf("scene needs    stack %d, node index %d bits, triangle index %d bits, address %d bits (%" PRIu64
                 " bytes)\n",
@@ -100,6 +116,8 @@ int RunSim(SimArgs args) {
     const char* state = loc.built ? "built" : loc.stale ? "out of date: sources changed, rebuilt on use" : "not built yet";
     std::printf("executable     %s (%s%s)\n", loc.path.c_str(), state,
                 loc.quick ? "; a quick build, unoptimised: KDRT_QUICK_MODELS" : "");
+    std::printf("synthesis      %s (%s)\n", sim::PhysPath(choice.config).c_str(),
+                core_json.is_null() ? "none yet: kdrt synth, or kdrt sim --synth" : "synthesized");
     return 0;
   }
   if (args.build_model) {
@@ -125,6 +143,12 @@ int RunSim(SimArgs args) {
   const PrecisionCheck check = CheckPrecision(image, ray_set.rays, format, args.strict, 0, "", image_format);
   const bool rtl = args.model != "fast", fast = args.model != "rtl";
   if (rtl && !loc.built) sim::BuildModel(choice, loc);
+  if (args.synth && core_json.is_null()) {
+    std::fprintf(stderr, "kdrt sim: synthesizing %s on the OSU 0.18 um library (takes minutes)\n",
+                 choice.config.Key().c_str());
+    sim::SynthesizeCore(choice.config, 0);
+    core_json = sim::ReadCoreJson(choice.config);
+  }
 
   // The waveform is written by the model; it gets a temporary name and is
   // published with the other outputs (or kept alone when the run fails).
@@ -171,6 +195,7 @@ int RunSim(SimArgs args) {
   report["precision"] = check.requirement.Json();
   report["warnings"] = check.warnings;
   for (const std::string& w : run_warnings) report["warnings"].push_back(w);
+  AddPhysical(core_json, choice.config, args.run.cores, args.shading.On(), &report);
 
   // Shading: each secondary pass is one more run of the same model (the
   // waveform and --trace-ray cover the primary pass only).
@@ -236,6 +261,7 @@ int RunSim(SimArgs args) {
   if (!args.quiet) {
     sim::PrintReport(report, stdout);
     sim::PrintCores(report, stdout);
+    sim::PrintPhysical(report["physical"], choice.config, stdout);
     if (report.contains("fast")) {
       const auto& f = report["fast"];
       std::printf("fast model     %.2f cycles per ray (error %+.2f %% against the RTL), %.3f s (%.0fx the RTL's speed)\n",
@@ -266,16 +292,7 @@ Runner AddSimCommand(CLI::App& app) {
   cmd->add_option("-o,--output", args->out, "Image file (.png, .ppm, .exr; default: <scene>.png)");
   cmd->add_option("--hits", args->hits, "EXR hit buffer with channels t, prim, u, v");
   cmd->add_option("--json", args->json, "Machine-readable statistics");
-  cmd->add_option("--format", args->format, "Number format of the core: " + fp::PresetNames() + " or eXmY")
-      ->capture_default_str();
-  cmd->add_option("--trav-format", args->trav_format,
-                  "Number format of the core's traversal datapath (ray setup's 1/d, box clip, split distances), "
-                  "at least --format's bits and at most fp32; cell intervals and stacks stay in --format "
-                  "(kdrt render --trav-format)");
-  cmd->add_option("--image-format", args->image_format,
-                  "Number format of the memory image the core reads (splits and vertices), at most --format's "
-                  "bits: stored narrower, widened exactly on load, computed in --format (kdrt render "
-                  "--image-format); default: --format");
+  AddFormatOptions(*cmd, args->core);
   cmd->add_option("--rays", args->rays, "Trace this ray file (KDRTRAYS) instead of the camera");
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
   // The camera's rays enter the core in kFrameRayOrder unless told otherwise
@@ -283,7 +300,7 @@ Runner AddSimCommand(CLI::App& app) {
   args->run.ray_order = sim::kFrameRayOrder;
   sim::AddRunOptions(*cmd, args->run);
   cmd->get_option("--ray-order")->each([args](const std::string&) { args->ray_order_given = true; });
-  sim::AddParamOptions(*cmd, args->overrides);
+  sim::AddParamOptions(*cmd, args->core.overrides);
   AddShadingOptions(*cmd, args->shading);
   cmd->add_flag("-q,--quiet", args->quiet, "No report on stdout");
   cmd->add_flag("--strict", args->strict,
@@ -294,6 +311,9 @@ Runner AddSimCommand(CLI::App& app) {
                   "Cycle model: rtl (the Verilated core, checked ray by ray), fast (the C++ cycle model, "
                   "docs/simulator.md; hits from the reference) or both (the RTL's report and the fast model's error)")
       ->capture_default_str();
+  cmd->add_flag("--synth", args->synth,
+                "Synthesize the configuration that runs (kdrt synth: every unit on the OSU 0.18 um library, "
+                "minutes) when build/phys has no synthesis of it, and report its physical cost");
   cmd->add_flag("--build-model", args->build_model,
                 "Build the model the scene needs (if it is missing or out of date) and stop; run nothing");
   return [cmd, args]() { return cmd->parsed() ? RunSim(*args) : -1; };

@@ -21,5 +21,6 @@ Runner AddExtremesCommand(CLI::App& app);
 Runner AddTradeCommand(CLI::App& app);
 Runner AddSweepCommand(CLI::App& app);
 Runner AddCompareAccelCommand(CLI::App& app);
+Runner AddSynthCommand(CLI::App& app);
 
 }  // namespace kdrt::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
       kdrt::cli::AddGenCommand(app),
       kdrt::cli::AddRaysCommand(app),
       kdrt::cli::AddSimCommand(app),
+      kdrt::cli::AddSynthCommand(app),
       kdrt::cli::AddCompareCommand(app),
       kdrt::cli::AddExtremesCommand(app),
       kdrt::cli::AddTradeCommand(app),

@@ -100,6 +100,8 @@ std::vector<TableRow> ReadSynthTable(const std::string& path) {
   std::ifstream in(path);
   std::string line;
   for (int lineno = 1; std::getline(in, line); ++lineno) {
+    // The unit table comes first; the default core's table follows a heading.
+    if (line.rfind("## ", 0) == 0) break;
     if (line.rfind("|", 0) != 0) continue;
     std::vector<std::string> cols;
     std::stringstream ss(line.substr(1));
@@ -530,6 +532,7 @@ std::string RtlHash(const std::string& source_dir) {
     return a.filename().string() < b.filename().string();
   });
   files.push_back(fs::path(source_dir) / kScriptPath);
+  files.push_back(fs::path(source_dir) / "scripts/synth-common.sh");  // sourced by the script
 
   uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a 64
   auto add = [&h](const std::string& bytes) {

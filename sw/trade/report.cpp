@@ -73,6 +73,8 @@ nlohmann::json FormatJson(const FormatResult& r) {
                  {"detail", r.area->detail}};
   }
   if (auto perf = r.RaysPerCyclePerKcell()) j["rays_per_cycle_per_kcell"] = *perf;
+  if (r.sim) j["model"] = r.sim->model;
+  j["physical"] = r.physical;
   return j;
 }
 
@@ -145,6 +147,28 @@ void PrintTable(const TradeResult& t, FILE* out) {
                         "macros, whose area is not a Yosys figure)\n",
                    static_cast<long long>(r.area->sram_bits));
       break;
+    }
+  }
+  bool physical = false;
+  for (const FormatResult& r : t.formats) physical |= !r.physical.is_null();
+  if (physical) {
+    std::fprintf(out, "\nphysical cost of the simulated core (kdrt synth: every unit on the cell library; 28 nm: "
+                      "Stillmaker & Baas 2017, interpolated between 32 and 20 nm)\n");
+    std::fprintf(out, "%-8s %-8s %8s %9s %11s %13s %13s  %s\n", "format", "library", "clock ns", "mm^2", "Mrays/s",
+                 "Mrays/s/mm^2", "28nm /mm^2", "critical unit");
+    for (const FormatResult& r : t.formats) {
+      const nlohmann::json& p = r.physical;
+      if (p.is_null()) {
+        std::fprintf(out, "%-8s no synthesis of %s\n", r.format.Name().c_str(),
+                     r.sim ? r.sim->model.value("key", "?").c_str() : "its core (no --sim)");
+        continue;
+      }
+      std::fprintf(out, "%-8s %-8s %8.2f %9.3f %11.3f %13.4f %13.2f  %s%s\n", r.format.Name().c_str(),
+                   p["library"].get<std::string>().c_str(), p["clock_ns"].get<double>(),
+                   p["area_mm2"]["total"].get<double>(), p["mrays_per_s"].get<double>(),
+                   p["mrays_per_s_per_mm2"].get<double>(), p["scaled"]["28nm"]["mrays_per_s_per_mm2"].get<double>(),
+                   p["critical_unit"].get<std::string>().c_str(),
+                   p["estimated_units"].empty() ? "" : " (estimated units: see notes)");
     }
   }
   std::fprintf(out, "\nmemory image  ");

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "sim/core_params.h"
 #include "sim/model_runner.h"
+#include "sim/phys.h"
 #include "trace/hit_compare.h"
 #include "trace/images.h"
 #include "trace/precision.h"
@@ -78,7 +79,15 @@ SimNumbers Simulate(const PreparedScene& p, const RaySet& rays, uint64_t stride,
   s.efficiency = m.report.value("efficiency", 0.0);
   if (m.report.contains("memory")) s.bytes_per_ray = m.report["memory"].value("bytes_per_ray", 0.0);
   s.cache_hit_rate = m.report.value("cache_hit_rate", nlohmann::json::object());
+  s.model = m.report.value("model", nlohmann::json::object());
   return s;
+}
+
+// The configuration a model run reports in "model" (CoreConfig::Json).
+sim::CoreConfig ConfigOf(const nlohmann::json& model) {
+  sim::CoreConfig c;
+  for (int i = 0; i < sim::kParamCount; ++i) c.value[i] = model.at(sim::kCoreParams[i].sv_name).get<int>();
+  return c;
 }
 
 }  // namespace
@@ -127,6 +136,7 @@ TradeResult MeasureTrade(const PreparedScene& p, const RaySet& rays, const Trade
   t.truth.holes = WatertightHoles(fp::kFp64);
 
   const size_t n = o.formats.size();
+  std::string no_synthesis;  // the simulated formats whose configuration has no synthesis in build/phys
   for (size_t k = 0; k < n; ++k) {
     const fp::Format& f = o.formats[k];
     const std::string tag = "[" + std::to_string(k + 1) + "/" + std::to_string(n) + "] " + f.Name() + ": ";
@@ -149,6 +159,19 @@ TradeResult MeasureTrade(const PreparedScene& p, const RaySet& rays, const Trade
       Say(o, tag + "simulating the RTL core on " + std::to_string((t.rays + t.sim_stride - 1) / t.sim_stride) +
                  " rays");
       r.sim = Simulate(p, rays, t.sim_stride, r, o.progress && isatty(STDERR_FILENO));
+      // The physical cost of exactly the simulated configuration, when it
+      // was synthesized (kdrt synth); never another configuration's.
+      const sim::CoreConfig config = ConfigOf(r.sim->model);
+      const nlohmann::json core = sim::ReadCoreJson(config);
+      if (core.is_null()) {
+        no_synthesis += (no_synthesis.empty() ? "" : ", ") + f.Name() + " (" + config.Key() + ")";
+      } else {
+        r.physical = sim::PhysicalBlock(core, sim::PhysPath(config), config, r.sim->cycles_per_ray);
+        for (const auto& e : r.physical["estimated_units"]) {
+          t.notes.push_back(f.Name() + " physical: " + e["unit"].get<std::string>() + " is estimated (" +
+                            e["method"].get<std::string>() + "), not synthesized");
+        }
+      }
     }
     if (o.area) {
       Say(o, tag + "area");
@@ -158,6 +181,14 @@ TradeResult MeasureTrade(const PreparedScene& p, const RaySet& rays, const Trade
       }
     }
     t.formats.push_back(std::move(r));
+  }
+  if (!no_synthesis.empty()) {
+    t.notes.push_back("no synthesis of the simulated core of " + no_synthesis +
+                      " in build/phys: no Mrays/s per mm^2 for them (kdrt synth SCENE --format F, minutes each); "
+                      "their area columns are the units' generic Yosys cells at the units' module defaults");
+  } else if (!o.sim && o.area) {
+    t.notes.push_back("area columns: the units' generic Yosys cells at the units' module defaults, not a cell "
+                      "library's area; --sim with a synthesis of the simulated core (kdrt synth) adds Mrays/s per mm^2");
   }
   if (o.area) {
     // rt_mem_system has no format parameter in the table: it is counted with

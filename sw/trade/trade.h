@@ -37,6 +37,7 @@ struct SimNumbers {
   double efficiency = 0;
   double bytes_per_ray = 0;
   nlohmann::json cache_hit_rate;  // as in kdrt sim's JSON
+  nlohmann::json model;           // the simulated configuration, as kdrt sim's "model" (key and parameters)
   double RaysPerCycle() const { return cycles_per_ray > 0 ? 1.0 / cycles_per_ray : 0.0; }
 };
 
@@ -49,6 +50,9 @@ struct FormatResult {
   double trace_seconds = 0;
   std::optional<SimNumbers> sim;
   std::optional<Area> area;
+  // kdrt sim's physical block (sim/phys.h) of the simulated configuration
+  // when build/phys has its synthesis (kdrt synth); null otherwise.
+  nlohmann::json physical;
   uint64_t memory_bytes = 0;
   std::vector<Hit> hits;
   std::vector<float> rgb;  // the shaded image

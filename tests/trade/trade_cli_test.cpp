@@ -113,13 +113,27 @@ TEST_F(TradeCli, AccuracyAgreesWithDirectHitBufferComparisonOnEveryGenerator) {
 
 // With --sim and no subsample, the cycle columns are kdrt sim's on the same
 // rays; with --sim-rays the subsample is said on stderr and in the JSON.
+// The simulated configuration is kdrt sim's; with no synthesis of it (an
+// empty KDRT_PHYS_DIR) there is no physical cost, and a note names its key.
 TEST_F(TradeCli, CyclesAreKdrtSimsAndASubsampleIsSaid) {
   const std::string scene = "gen:balls:800 --res 24x24";
-  RunResult r = RunKdrt("trade " + scene + " --formats fp32 --no-area --sim -q --json " + Path("t.json"));
+  fs::create_directories(Path("phys"));
+  const std::string env = "env KDRT_PHYS_DIR=" + Path("phys") + " " + KDRT_BIN + " ";
+  RunResult r =
+      testing::RunCommand(env + "trade " + scene + " --formats fp32 --no-area --sim -q --json " + Path("t.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = RunKdrt("sim " + scene + " --format fp32 -q -o " + Path("s.png") + " --json " + Path("s.json"));
+  r = testing::RunCommand(env + "sim " + scene + " --format fp32 -q -o " + Path("s.png") + " --json " + Path("s.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json t = ReadJson(Path("t.json")), s = ReadJson(Path("s.json"));
+  EXPECT_EQ(t["formats"][0]["model"]["key"], s["model"]["key"]);
+  EXPECT_TRUE(t["formats"][0]["physical"].is_null());
+  EXPECT_TRUE(s["physical"].is_null());
+  bool no_synthesis = false;
+  for (const auto& note : t["notes"]) {
+    no_synthesis |= note.get<std::string>().find("no synthesis of the simulated core of fp32 (" +
+                                                 s["model"]["key"].get<std::string>() + ")") != std::string::npos;
+  }
+  EXPECT_TRUE(no_synthesis) << t["notes"].dump();
   EXPECT_EQ(t["formats"][0]["cycles_per_ray"].get<double>(), s["cycles_per_ray"].get<double>());
   EXPECT_EQ(t["formats"][0]["efficiency"].get<double>(), s["efficiency"].get<double>());
   EXPECT_EQ(t["formats"][0]["bytes_per_ray"].get<double>(), s["memory"]["bytes_per_ray"].get<double>());

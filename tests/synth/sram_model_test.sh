@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# scripts/sram_model.py: area and access time grow with the words and the
+# width; every macro says "source": "model"; bad arguments are refused.
+# Usage: sram_model_test.sh SOURCE_DIR
+set -euo pipefail
+model="$1/scripts/sram_model.py"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+get() { sed -n "s/.*\"$2\": \([0-9.]*\).*/\1/p" <<< "$1"; }
+
+prev_area=0 prev_access=0
+for words in 16 64 256 1024 4096; do
+  out=$("$model" "$words" 128)
+  grep -q '"source": "model"' <<< "$out" || fail "$words x 128: no source model in $out"
+  area=$(get "$out" area_um2) access=$(get "$out" access_ns)
+  awk -v a="$area" -v pa="$prev_area" -v t="$access" -v pt="$prev_access" 'BEGIN { exit !(a > pa && t > pt) }' \
+    || fail "$words x 128: area $area, access $access not above $prev_area, $prev_access"
+  prev_area=$area prev_access=$access
+done
+prev_area=0 prev_access=0
+for width in 8 32 128 512; do
+  out=$("$model" 256 "$width")
+  area=$(get "$out" area_um2) access=$(get "$out" access_ns)
+  awk -v a="$area" -v pa="$prev_area" -v t="$access" -v pt="$prev_access" 'BEGIN { exit !(a > pa && t >= pt) }' \
+    || fail "256 x $width: area $area, access $access below $prev_area, $prev_access"
+  prev_area=$area prev_access=$access
+done
+rc=0
+"$model" 0 8 2> /dev/null || rc=$?
+[ "$rc" = 2 ] || fail "0 words: exit status $rc, expected 2"
+echo "sram_model_test: ok"
