@@ -83,6 +83,7 @@ int RunSim(SimArgs args) {
   // vertices stored in fewer bits, widened exactly on load.
   const fp::Format image_format = args.image_format.empty() ? format : fp::ParseFormat(args.image_format);
   sim::OverrideImageFormat(format, image_format, &args.overrides);
+  args.scene.strict = args.strict;
   const PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);
   // The core reads the image of its own format, or of --image-format
@@ -170,6 +171,7 @@ int RunSim(SimArgs args) {
   report["ray_order"] = args.run.ray_order;
   report["precision"] = check.requirement.Json();
   report["warnings"] = check.warnings;
+  for (const std::string& w : p.scene.warnings) report["warnings"].push_back(w);
   for (const std::string& w : run_warnings) report["warnings"].push_back(w);
 
   // Shading: each secondary pass is one more run of the same model (the
@@ -287,7 +289,8 @@ Runner AddSimCommand(CLI::App& app) {
   AddShadingOptions(*cmd, args->shading);
   cmd->add_flag("-q,--quiet", args->quiet, "No report on stdout");
   cmd->add_flag("--strict", args->strict,
-                "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");
+                "Refuse (exit 1, no output) instead of warning: a format that cannot represent the scene, or "
+                "data of the scene file the reader would leave out");
   cmd->add_flag("--which-model", args->which_model,
                 "Print the model the scene needs and whether it is built; run nothing");
   cmd->add_option("--model", args->model,
