@@ -83,7 +83,7 @@ TEST_F(BadInputCli, NffResolutionBeyondTheFrameLimit) {
   ExpectError(RunKdrt("info " + nff + " --json " + Path("out.json")),
               nff + ":7: resolution 65536 x 65536 is 4294967296 camera rays; at most 67108864 per frame (8192 x 8192)",
               1);
-  ExpectError(Render("gen:tetra:20", "--res 16384x8192"),
+  ExpectError(RunKdrt("render gen:tetra:20 --res 16384x8192 -o " + Path("out.png")),
               "--res 16384x8192: 134217728 camera rays; at most 67108864 per frame (8192x8192)", 1);
 }
 
@@ -164,11 +164,11 @@ TEST_F(BadInputCli, RawBytesOfTheFileAreEscaped) {
   const std::string nff = Write("esc.nff", std::string("p 3\n0 0 0\n1 0 0\n0 1 0\n\x1b[31m\xff\x01 1 2 3\n"));
   ExpectError(Render(nff), nff + ":5: unknown keyword '\\x1b[31m\\xff\\x01'", 1);
   const std::string obj = Write("esc.obj", std::string(kTriangleObj) + "f 1 2 \x1b\\\x80\n");
-  ExpectError(Render(obj), obj + ":5: face vertex '\\x1b\\\\\\x80' is not an index", 1);
+  ExpectError(Render(obj), obj + ":5: face vertex '\\x1b\\\\\\x80' is not an index", 2);
   const std::string off = Write("esc.off", "OFF\n3 1\n0 0 0\n1 0 \xc3\x28\n0 1 0\n3 0 1 2\n");
-  ExpectError(Render(off), off + ":4: vertex coordinate: expected a number, got '\\xc3('", 1);
+  ExpectError(Render(off), off + ":4: vertex coordinate: expected a number, got '\\xc3('", 3);
   const std::string ply = Write("esc.ply", "ply\nformat ascii 1.0\n\x07\x7f 1\nend_header\n");
-  ExpectError(Render(ply), ply + ":3: unknown PLY header keyword '\\x07\\x7f'", 1);
+  ExpectError(Render(ply), ply + ":3: unknown PLY header keyword '\\x07\\x7f'", 4);
 }
 
 TEST_F(BadInputCli, GeneratorSpecMustBeWhole) {
