@@ -4,6 +4,8 @@
 #                   shadow rays) on both, compared byte for byte (installs what is missing)
 #   make test       build and run every test (installs what is missing)
 #   make test-long  the long variants (more random vectors, larger images)
+#   make test-asan  the software tests and the mutated-input corpus built with
+#                   AddressSanitizer and UBSan in build-asan/ (not in make test)
 #   make lint       verilator --lint-only -Wall on the RTL
 #   make synth      synthesis: cells, logic depth, OSU 0.18 um area and critical
 #                   path per unit and format; the default core's clock and area
@@ -15,7 +17,7 @@ DEMO_SCENE ?= scenes/simple.nff
 DEMO_SIM_RES ?= 128x128
 KDRT := $(BUILD)/bin/kdrt
 
-.PHONY: all deps demo-deps configure demo-configure build demo-build demo test test-long lint synth bench clean
+.PHONY: all deps demo-deps configure demo-configure build demo-build demo test test-long test-asan lint synth bench clean
 
 all: build
 
@@ -58,6 +60,18 @@ test: build
 
 test-long: build
 	KDRT_LONG=1 ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+# The software test binaries (no RTL model) with ASan and UBSan; a finding
+# aborts its binary, so any non-zero exit fails the target.
+ASAN_BUILD ?= build-asan
+ASAN_TESTS ?= scene_tests fuzz_tests accel_tests fp_tests trace_tests structures_tests
+test-asan: deps
+	@test -f $(ASAN_BUILD)/build.ninja || cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DKDRT_SANITIZE=ON
+	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target kdrt $(ASAN_TESTS)
+	@set -e; for t in $(ASAN_TESTS); do \
+	  echo "test-asan: $$t"; \
+	  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 $(ASAN_BUILD)/tests/$$t; \
+	done
 
 lint: deps
 	@bash scripts/lint.sh

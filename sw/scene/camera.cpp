@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <glm/geometric.hpp>
 
@@ -123,6 +124,29 @@ Camera AutoCamera(const Scene& scene, int width, int height) {
   double distance = radius * std::sqrt(1.0 + t * t) / t;  // R / sin(atan t)
   cam.at = glm::vec3(centre);
   cam.from = glm::vec3(centre + glm::dvec3(0.0, 0.0, distance));
+  if (!Finite(cam.from) || cam.from == cam.at) {
+    // The box is too large (or too small) for a float camera outside it: say
+    // which triangle spans it, as the scene has no camera of its own.
+    size_t far = 0;
+    double far_extent = -1.0;
+    for (size_t i = 0; i < scene.triangles.size(); ++i) {
+      const Triangle& t = scene.triangles[i];
+      for (const glm::vec3* v : {&t.v0, &t.v1, &t.v2}) {
+        const double e = glm::length(glm::dvec3(*v) - centre);
+        if (e > far_extent) {
+          far_extent = e;
+          far = i;
+        }
+      }
+    }
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "no camera in the scene, and the automatic one does not fit in float: it would stand at "
+                  "z = %g looking at z = %g (the bounding box spans %g; triangle %zu reaches %g from its "
+                  "centre); give the scene a camera (NFF `v` block) or use --camera",
+                  centre.z + distance, centre.z, 2.0 * radius, far, far_extent);
+    throw InputError(scene.source, 0, text);
+  }
   return cam;
 }
 

@@ -11,8 +11,14 @@
 namespace kdrt {
 
 Scene LoadNff(const std::string& path, const LoadOptions& options);
-Scene LoadObj(const std::string& path);
-Scene LoadPly(const std::string& path);
-Scene LoadOff(const std::string& path);
+Scene LoadObj(const std::string& path, const LoadOptions& options);
+Scene LoadPly(const std::string& path, const LoadOptions& options);
+Scene LoadOff(const std::string& path, const LoadOptions& options);
+
+// Data a reader leaves out: "file:line: what" (line 0: the file) goes to
+// scene->warnings, or with options.strict is thrown as an InputError with
+// " (--strict)" added.
+void IgnoredData(Scene* scene, const LoadOptions& options, const std::string& file, int line,
+                 const std::string& what);
 
 }  // namespace kdrt

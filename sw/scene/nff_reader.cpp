@@ -68,7 +68,7 @@ class NffReader {
         ExpectFields(1);
         ReadCone();
       } else {
-        Fail("unknown keyword '" + std::string(key.substr(0, 40)) + "'");
+        Fail("unknown keyword " + QuoteBytes(key));
       }
     }
     return std::move(scene_);
@@ -97,7 +97,7 @@ class NffReader {
   void ExpectFields(size_t n, const char* alternative = nullptr) const {
     if (fields_.size() == n) return;
     std::string want = std::to_string(n) + (alternative ? std::string(" ") + alternative : "");
-    Fail("'" + std::string(fields_[0].substr(0, 40)) + "' line needs " + want + " fields, got " +
+    Fail(QuoteBytes(fields_[0]) + " line needs " + want + " fields, got " +
          std::to_string(fields_.size()));
   }
 
@@ -109,7 +109,7 @@ class NffReader {
     }
     if (fields_[0] != key) {
       Fail(std::string("expected '") + key + "' in " + context + ", got '" +
-           std::string(fields_[0].substr(0, 40)) + "'");
+           EscapeBytes(fields_[0]) + "'");
     }
     ExpectFields(n);
   }
@@ -139,6 +139,12 @@ class NffReader {
     ExpectLine("resolution", 3, ctx);
     cam.width = ParseInt(fields_[1], Pos(), "resolution", 1, kMaxResolution);
     cam.height = ParseInt(fields_[2], Pos(), "resolution", 1, kMaxResolution);
+    const long long pixels = static_cast<long long>(cam.width) * cam.height;
+    if (pixels > kMaxCameraPixels) {
+      Fail("resolution " + std::to_string(cam.width) + " x " + std::to_string(cam.height) + " is " +
+           std::to_string(pixels) + " camera rays; at most " + std::to_string(kMaxCameraPixels) +
+           " per frame (8192 x 8192)");
+    }
     scene_.camera = cam;
   }
 

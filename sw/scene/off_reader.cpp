@@ -3,7 +3,8 @@
 // '#' comments and blank lines anywhere. kdrt takes x y z of each vertex and
 // the indices of each face (fanned in file order, the numbering contract);
 // colours, normals and texture coordinates are checked as numbers and
-// ignored. One pass checks and reads.
+// ignored. One pass checks and reads. Lines after the declared faces are
+// left out with a warning (Scene::warnings; --strict refuses them).
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,7 +16,7 @@
 
 namespace kdrt {
 
-Scene LoadOff(const std::string& path) {
+Scene LoadOff(const std::string& path, const LoadOptions& options) {
   const std::string bytes = ReadWholeFile(path);
   LineCursor lines(bytes);
   std::vector<std::string_view> f;
@@ -23,7 +24,7 @@ Scene LoadOff(const std::string& path) {
   auto need_line = [&](const std::string& what) {
     if (!lines.Next(&f, true)) fail("file ends before " + what);
   };
-  auto quote = [](std::string_view s) { return "'" + std::string(s.substr(0, 40)) + "'"; };
+  auto quote = [](std::string_view s) { return QuoteBytes(s); };
 
   need_line("the OFF header");
   const std::string_view magic = f[0];
@@ -86,6 +87,16 @@ Scene LoadOff(const std::string& path) {
       polygon.push_back(vertices[idx]);
     }
     builder.AddFan(polygon.data(), polygon.size());
+  }
+  int first = 0;
+  long more = 0;
+  while (lines.Next(&f, true)) {
+    if (more++ == 0) first = lines.line();
+  }
+  if (more > 0) {
+    IgnoredData(&scene, options, path, first,
+                std::to_string(more) + " line" + (more > 1 ? "s" : "") + " after the declared " +
+                    std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces left out");
   }
   return scene;
 }

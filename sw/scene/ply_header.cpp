@@ -95,7 +95,7 @@ PlyHeader ReadPlyHeader(const std::string& path, const std::string& bytes, LineC
       } else if (f[1] == "binary_big_endian") {
         h.format = PlyFormat::kBinaryBig;
       } else {
-        fail(line, "unknown PLY format '" + std::string(f[1].substr(0, 40)) + "'");
+        fail(line, "unknown PLY format " + QuoteBytes(f[1]));
       }
       have_format = true;
     } else if (f[0] == "element") {
@@ -134,7 +134,7 @@ PlyHeader ReadPlyHeader(const std::string& path, const std::string& bytes, LineC
       p.role = RoleOf(h.elements.back(), p);
       h.elements.back().props.push_back(p);
     } else {
-      fail(line, "unknown PLY header keyword '" + std::string(f[0].substr(0, 40)) + "'");
+      fail(line, "unknown PLY header keyword " + QuoteBytes(f[0]));
     }
   }
   if (!have_format) fail(lines->line(), "PLY header has no format line");
@@ -145,7 +145,7 @@ PlyHeader ReadPlyHeader(const std::string& path, const std::string& bytes, LineC
     if (e.count == 0) continue;
     if (e.props.empty()) fail(e.line, "PLY element without properties");
     if (e.count > data_bytes / MinEntryBytes(e, h.format)) {
-      fail(e.line, "PLY element '" + e.name + "' count exceeds the file size");
+      fail(e.line, "PLY element " + QuoteBytes(e.name) + " count exceeds the file size");
     }
     if (e.name != "face") continue;
     // Faces are fanned as they are read, so their vertices must be known.

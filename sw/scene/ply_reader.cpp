@@ -4,7 +4,8 @@
 // partial scene. kdrt needs `x y z` of the `vertex` element and the
 // `vertex_indices` (or `vertex_index`) list of the `face` element; every
 // other value is checked for syntax and skipped. Faces are fanned in file
-// order (the numbering contract).
+// order (the numbering contract). Data after the declared elements is left
+// out with a warning (Scene::warnings; --strict refuses it).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -36,7 +37,7 @@ class AsciiValues {
     do {
       if (!lines_->Next(&fields_, false)) {
         throw InputError(path_, lines_->line(),
-                         "file ends in PLY element '" + e.name + "' after " + std::to_string(i) +
+                         "file ends in PLY element " + QuoteBytes(e.name) + " after " + std::to_string(i) +
                              " of " + std::to_string(e.count));
       }
     } while (fields_.empty());
@@ -79,7 +80,7 @@ class AsciiValues {
   }
 
   TextPos Pos() const { return TextPos{&path_, lines_->line()}; }
-  std::string Where() const { return element_->name + " " + std::to_string(index_); }
+  std::string Where() const { return EscapeBytes(element_->name) + " " + std::to_string(index_); }
   [[noreturn]] void Fail(const std::string& what) const {
     throw InputError(path_, lines_->line(), Where() + ": " + what);
   }
@@ -89,7 +90,7 @@ class AsciiValues {
     if (next_ >= fields_.size()) Fail("too few values");
     return fields_[next_++];
   }
-  static std::string Quote(std::string_view s) { return "'" + std::string(s.substr(0, 40)) + "'"; }
+  static std::string Quote(std::string_view s) { return QuoteBytes(s); }
   static const char* TypeName(PlyType t) {
     return IsFloatType(t) ? "float" : "integer";
   }
@@ -130,16 +131,21 @@ class BinaryValues {
   }
   void Skip(PlyType t) { SkipItems(t, 1); }
   void SkipItems(PlyType t, long long n) {
+    // n < 2^62 keeps n * size from wrapping around.
+    const size_t left = bytes_.size() - pos_;
+    if (static_cast<unsigned long long>(n) > left || static_cast<size_t>(n) * PlySize(t) > left) {
+      Fail("file ends inside PLY binary data");
+    }
     const size_t size = static_cast<size_t>(n) * PlySize(t);
-    if (size > bytes_.size() - pos_) Fail("file ends inside PLY binary data");
     pos_ += size;
   }
 
   TextPos Pos() const { return TextPos{&path_, 0}; }
-  std::string Where() const { return element_->name + " " + std::to_string(index_); }
+  std::string Where() const { return EscapeBytes(element_->name) + " " + std::to_string(index_); }
   [[noreturn]] void Fail(const std::string& what) const {
     throw InputError(path_, 0, Where() + ": " + what);
   }
+  size_t BytesLeft() const { return bytes_.size() - pos_; }
 
  private:
   double Read(PlyType t) {
@@ -225,22 +231,49 @@ void ReadData(const PlyHeader& header, Values* in, SceneBuilder* builder) {
   }
 }
 
+// "vertex 4, face 1": the header's elements and counts, for messages.
+std::string DeclaredElements(const PlyHeader& header) {
+  std::string s;
+  for (const PlyElement& e : header.elements) {
+    s += (s.empty() ? "" : ", ") + EscapeBytes(e.name) + " " + std::to_string(e.count);
+  }
+  return s;
+}
+
 }  // namespace
 
-Scene LoadPly(const std::string& path) {
+Scene LoadPly(const std::string& path, const LoadOptions& options) {
   const std::string bytes = ReadWholeFile(path);
   LineCursor lines(bytes);
   const PlyHeader header = ReadPlyHeader(path, bytes, &lines);
   Scene scene;
   scene.source = path;
   SceneBuilder builder(&scene);
+  const std::string declared = DeclaredElements(header);
   if (header.format == PlyFormat::kAscii) {
     AsciiValues in(path, &lines);
     ReadData(header, &in, &builder);
+    std::vector<std::string_view> f;
+    int first = 0;
+    long more = 0;
+    while (lines.Next(&f, false)) {
+      if (f.empty()) continue;
+      if (more++ == 0) first = lines.line();
+    }
+    if (more > 0) {
+      IgnoredData(&scene, options, path, first,
+                  std::to_string(more) + " line" + (more > 1 ? "s" : "") + " after the declared elements (" +
+                      declared + ") left out");
+    }
   } else {
     BinaryValues in(path, bytes, std::min(bytes.size(), lines.offset()),
                     header.format == PlyFormat::kBinaryBig);
     ReadData(header, &in, &builder);
+    if (in.BytesLeft() > 0) {
+      IgnoredData(&scene, options, path, 0,
+                  std::to_string(in.BytesLeft()) + " bytes after the declared elements (" + declared +
+                      ") left out");
+    }
   }
   return scene;
 }

@@ -38,20 +38,32 @@ Scene LoadScene(const std::string& path, const LoadOptions& options) {
   if (ext == "nff") {
     scene = LoadNff(path, options);
   } else if (ext == "obj") {
-    scene = LoadObj(path);
+    scene = LoadObj(path, options);
   } else if (ext == "ply") {
-    scene = LoadPly(path);
+    scene = LoadPly(path, options);
   } else if (ext == "off") {
-    scene = LoadOff(path);
+    scene = LoadOff(path, options);
   } else {
     throw InputError(path, 0,
-                     "unknown scene file extension '" + ext +
-                         "' (expected .nff, .obj, .ply, .off)");
+                     "unknown scene file extension " + QuoteBytes(ext) +
+                         " (expected .nff, .obj, .ply, .off)");
   }
   // The one check of the scene as a whole, for every format. Coordinates were
   // checked as they were read (RequireFinite), where the line is known.
   if (scene.triangles.empty()) throw InputError(path, 0, "scene has no triangles");
+  // Zero-area triangles are never hit: a scene of nothing else is as empty.
+  if (std::all_of(scene.triangles.begin(), scene.triangles.end(), IsDegenerate)) {
+    throw InputError(path, 0,
+                     "scene has no triangle with an area (all " + std::to_string(scene.triangles.size()) +
+                         " are degenerate: zero area in float)");
+  }
   return scene;
+}
+
+void IgnoredData(Scene* scene, const LoadOptions& options, const std::string& file, int line,
+                 const std::string& what) {
+  if (options.strict) throw InputError(file, line, what + " (--strict)");
+  scene->warnings.push_back(InputError(file, line, what).what());
 }
 
 bool IsDegenerate(const Triangle& t) {

@@ -59,10 +59,19 @@ struct Scene {
   std::optional<Camera> camera;     // from the file's `v` block, if any
   glm::vec3 background{0, 0, 0};
   std::string source;               // file name or generator description
+  // Data of the file the loader left out ("file:line: what"): statements
+  // kdrt does not read, values after the declared elements. The commands
+  // print them as warnings and list them in their JSON "warnings".
+  std::vector<std::string> warnings;
 };
 
+// At most this many camera rays per frame (8192 x 8192): the rays alone take
+// 2 GiB. An NFF `resolution` or a --res beyond it is an input error.
+constexpr long long kMaxCameraPixels = 1LL << 26;
+
 // Loads NFF (.nff), OBJ, PLY or OFF (by extension). Throws InputError with
-// file:line on malformed input, NaN/Inf coordinates or an empty scene.
+// file:line on malformed input, NaN/Inf coordinates, an empty scene or one
+// whose triangles all have zero area.
 Scene LoadScene(const std::string& path);
 
 // How NFF spheres (`s`) and cones/cylinders (`c`) become triangles; see
@@ -73,6 +82,9 @@ Scene LoadScene(const std::string& path);
 struct LoadOptions {
   int sphere_segments = 16;  // 3 .. 4096
   int cone_segments = 16;    // 3 .. 4096
+  // Refuse (InputError) data the reader would leave out, instead of a warning
+  // in Scene::warnings.
+  bool strict = false;
 };
 
 Scene LoadScene(const std::string& path, const LoadOptions& options);

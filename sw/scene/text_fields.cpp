@@ -44,12 +44,7 @@ void FailNotFinite(const TextPos& pos, const std::string& what) {
 
 namespace {
 
-std::string Quote(std::string_view s) {
-  constexpr size_t kMax = 40;
-  std::string q = "'" + std::string(s.substr(0, kMax));
-  if (s.size() > kMax) q += "...";
-  return q + "'";
-}
+std::string Quote(std::string_view s) { return QuoteBytes(s); }
 
 // from_chars rejects a leading '+', which C's printf never writes but
 // hand-written files sometimes do. A second sign after it stays, so that

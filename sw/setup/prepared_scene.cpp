@@ -1,5 +1,6 @@
 #include "setup/prepared_scene.h"
 
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -12,22 +13,41 @@ namespace kdrt {
 
 Scene LoadOrGenerate(const SceneSpec& spec) {
   if (spec.scene.rfind("gen:", 0) == 0) {
+    // gen:NAME or gen:NAME:SIZE, SIZE all digits: "1e3" or "10:extra" is an
+    // error, never a size read up to the first non-digit.
     const std::string rest = spec.scene.substr(4);
     const size_t colon = rest.find(':');
     const std::string name = rest.substr(0, colon);
     int size = 1000;
     if (colon != std::string::npos) {
-      try {
-        size = std::stoi(rest.substr(colon + 1));
-      } catch (const std::exception&) {
-        throw InputError(spec.scene + ": size after the generator name is not an integer");
+      const std::string digits = rest.substr(colon + 1);
+      if (digits.find(':') != std::string::npos) {
+        throw InputError(spec.scene, 0, "expected gen:NAME or gen:NAME:SIZE (one size, no more fields)");
       }
+      long long value = 0;
+      const char* end = digits.data() + digits.size();
+      const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
+      if (digits.empty() || ec != std::errc() || ptr != end) {
+        throw InputError(spec.scene, 0, "size " + QuoteBytes(digits) + " is not a whole number");
+      }
+      if (value < 1 || value > kMaxGeneratorSize) {
+        throw InputError(spec.scene, 0,
+                         "size " + digits + " is outside 1.." + std::to_string(kMaxGeneratorSize));
+      }
+      size = static_cast<int>(value);
     }
-    return GenerateScene(name, size);
+    try {
+      return GenerateScene(name, size);
+    } catch (const InputError& e) {
+      throw InputError(spec.scene, 0, e.what());  // names the spec the user gave
+    }
   }
   LoadOptions lo;
   if (spec.sphere_segments > 0) lo.sphere_segments = spec.sphere_segments;
-  return LoadScene(spec.scene, lo);
+  lo.strict = spec.strict;
+  Scene scene = LoadScene(spec.scene, lo);
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "kdrt: warning: %s\n", w.c_str());
+  return scene;
 }
 
 PreparedScene PrepareScene(const SceneSpec& spec) {

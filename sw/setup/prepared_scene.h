@@ -20,6 +20,7 @@ namespace kdrt {
 struct SceneSpec {
   std::string scene;        // a file or gen:NAME:SIZE
   int sphere_segments = 0;  // 0: loader default
+  bool strict = false;      // refuse data the loader would leave out (LoadOptions::strict)
   BuildOptions build;
   // A kd-tree split rule (the tree in the memory image, build.method) or a
   // software structure (structures/structure.h) built beside the image.
@@ -41,7 +42,9 @@ struct PreparedScene {
   AccelKind accel = AccelKind::kSah;
 };
 
-// Loads (or generates) the scene alone.
+// Loads (or generates) the scene alone. The scene's warnings (data of the
+// file left out) are printed on stderr as "kdrt: warning: <text>"; the
+// commands also list them in their JSON "warnings".
 Scene LoadOrGenerate(const SceneSpec& spec);
 // Loads (or generates) the scene, builds the tree and the memory image.
 PreparedScene PrepareScene(const SceneSpec& spec);

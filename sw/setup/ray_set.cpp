@@ -14,7 +14,12 @@ void ParseResolution(const std::string& res, int* w, int* h) {
   char x = 0;
   std::istringstream in(res);
   if (!(in >> *w >> x >> *h) || x != 'x' || *w < 1 || *h < 1 || *w > 65536 || *h > 65536 || !in.eof()) {
-    throw InputError("--res '" + res + "': expected WxH with 1 <= W, H <= 65536, e.g. 512x512");
+    throw InputError("--res " + QuoteBytes(res) + ": expected WxH with 1 <= W, H <= 65536, e.g. 512x512");
+  }
+  const long long pixels = static_cast<long long>(*w) * *h;
+  if (pixels > kMaxCameraPixels) {
+    throw InputError("--res " + res + ": " + std::to_string(pixels) + " camera rays; at most " +
+                     std::to_string(kMaxCameraPixels) + " per frame (8192x8192)");
   }
 }
 
@@ -44,7 +49,9 @@ RaySet MakeRays(const Scene& scene, const std::string& rays_file, const std::str
     set.width = static_cast<int>(set.rays.size());
     return set;
   }
-  Camera cam = scene.camera ? *scene.camera : AutoCamera(scene, 512, 512);
+  // --camera replaces the automatic camera as a whole: it is not computed
+  // then (a scene too large for it is fine with an explicit camera).
+  Camera cam = scene.camera ? *scene.camera : camera.empty() ? AutoCamera(scene, 512, 512) : Camera{};
   if (!camera.empty()) cam = ParseCamera(camera, cam);
   if (!res.empty()) ParseResolution(res, &cam.width, &cam.height);
   set.width = cam.width;

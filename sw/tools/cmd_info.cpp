@@ -24,6 +24,7 @@ struct InfoArgs {
   std::string rays;
   std::string format = "fp32";
   int threads = 0;
+  bool strict = false;
 };
 
 // The image of each format: section sizes and the total.
@@ -55,7 +56,9 @@ std::string LimitingCriteria(const PrecisionRequirement& req) {
 int Run(const InfoArgs& args) {
   const fp::Format format = fp::ParseFormat(args.format);
   const img::ImageLayout layout = LayoutFor(format);
-  const PreparedScene p = PrepareScene(args.scene);
+  SceneSpec spec = args.scene;
+  spec.strict = args.strict;
+  const PreparedScene p = PrepareScene(spec);
   const RaySet ray_set = MakeRays(p.scene, args.rays, "", "");
   const ImageView fp32_image(p.image);
   const PrecisionRequirement req = AnalyzePrecision(fp32_image, ray_set.rays, args.threads);
@@ -93,7 +96,8 @@ int Run(const InfoArgs& args) {
                         {"image_format", fp::Format{layout.e, layout.m}.Name()},
                         {"image_bytes", chosen.size()},
                         {"images", images},
-                        {"precision", req.Json()}};
+                        {"precision", req.Json()},
+                        {"warnings", p.scene.warnings}};
     AddJsonOutput(outputs, args.json, j);
   }
   if (!args.image_out.empty()) {
@@ -139,6 +143,8 @@ Runner AddInfoCommand(CLI::App& app) {
   cmd->add_option("--rays", args->rays,
                   "Derive the precision requirement for this ray file (KDRTRAYS) instead of the camera rays");
   cmd->add_option("--threads", args->threads, "Threads of the precision analysis (0: all cores)");
+  cmd->add_flag("--strict", args->strict,
+                "Refuse (exit 1, no output) data of the scene file the reader would leave out instead of warning");
   return [cmd, args]() { return cmd->parsed() ? Run(*args) : -1; };
 }
 

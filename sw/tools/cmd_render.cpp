@@ -79,7 +79,9 @@ int Run(const RenderArgs& args) {
   to.isect = ParseIsectMethod(args.isect);
   to.threads = args.threads;
   if (!IsKdTree(args.scene.accel)) CheckStructureTraceOptions(to);  // before the build
-  PreparedScene p = PrepareScene(args.scene);
+  SceneSpec spec = args.scene;
+  spec.strict = args.strict;
+  PreparedScene p = PrepareScene(spec);
   const bool mailbox = p.structure && p.structure->uses_mailbox();
   const ImageView image(p.image);
   // The image the tracer reads: the format's own packed image (splits and
@@ -129,6 +131,7 @@ int Run(const RenderArgs& args) {
       {"warnings", check.warnings},
   };
   if (!p.structure) j["build"] = BuildOptionsJson(args.scene.build, p.tree.stats);
+  for (const std::string& w : p.scene.warnings) j["warnings"].push_back(w);
 
   // Shading: the secondary passes, traced by the same model.
   ShadedFrame frame;
@@ -221,7 +224,8 @@ Runner AddRenderCommand(CLI::App& app) {
                   "stored in fewer bits and loaded exactly, the arithmetic in --format; kdrt sim --image-format)")
       ->capture_default_str();
   cmd->add_flag("--strict", args->strict,
-                "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");
+                "Refuse (exit 1, no output) instead of warning: a format that cannot represent the scene, or "
+                "data of the scene file the reader would leave out");
   cmd->add_option("--rays", args->rays, "Trace this ray file (KDRTRAYS) instead of the camera");
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
   AddShadingOptions(*cmd, args->shading);

@@ -99,6 +99,7 @@ int RunSim(SimArgs args) {
   }
   const CoreFormats formats = ResolveFormats(args.core);
   const fp::Format format = formats.format, image_format = formats.image_format;
+  args.scene.strict = args.strict;
   const PreparedScene p = PrepareScene(args.scene);
   const ImageView image(p.image);
   const SceneCore sc = ChooseSceneCore(formats, p.image, args.run.mem_size, args.run.allow_overflow);
@@ -194,6 +195,7 @@ int RunSim(SimArgs args) {
   report["ray_order"] = args.run.ray_order;
   report["precision"] = check.requirement.Json();
   report["warnings"] = check.warnings;
+  for (const std::string& w : p.scene.warnings) report["warnings"].push_back(w);
   for (const std::string& w : run_warnings) report["warnings"].push_back(w);
   AddPhysical(core_json, choice.config, args.run.cores, args.shading.On(), &report);
 
@@ -304,7 +306,8 @@ Runner AddSimCommand(CLI::App& app) {
   AddShadingOptions(*cmd, args->shading);
   cmd->add_flag("-q,--quiet", args->quiet, "No report on stdout");
   cmd->add_flag("--strict", args->strict,
-                "Refuse (exit 1, no output) a format that cannot represent the scene instead of warning");
+                "Refuse (exit 1, no output) instead of warning: a format that cannot represent the scene, or "
+                "data of the scene file the reader would leave out");
   cmd->add_flag("--which-model", args->which_model,
                 "Print the model the scene needs and whether it is built; run nothing");
   cmd->add_option("--model", args->model,

@@ -7,6 +7,7 @@
 #include <iterator>
 
 #include "common/error.h"
+#include "scene/text_fields.h"
 #include "trace/output_file.h"
 
 namespace kdrt {
@@ -27,9 +28,8 @@ uint32_t ReadU32(const char* p) {
 }  // namespace
 
 std::vector<Ray> ReadRaysFile(const std::string& path, Query* query) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open ray file");
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Missing, a directory or unreadable: an InputError naming the file.
+  const std::string bytes = ReadWholeFile(path);
   if (bytes.size() < kRaysHeaderBytesV1 || std::memcmp(bytes.data(), kRaysMagic, 8) != 0) {
     throw InputError(path, 0, "not a kdrt ray file (expected magic KDRTRAYS)");
   }
