@@ -103,6 +103,7 @@ class AreaTest : public ::testing::Test {
     fs::copy(kSource + "/rtl", copy / "rtl");
     fs::copy(kSource + "/docs", copy / "docs", fs::copy_options::recursive);
     fs::copy(kSource + "/scripts/synth-unit.sh", copy / "scripts/synth-unit.sh");
+    fs::copy(kSource + "/scripts/synth-common.sh", copy / "scripts/synth-common.sh");
     return copy;
   }
 
