@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -14,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/common/run_kdrt.h"
+#include "tests/common/test_cores.h"
 
 namespace kdrt {
 namespace {
@@ -38,16 +38,10 @@ class ExtremesSim : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ExtremesSim, SimMatchesRenderAndNoHolesWithoutAWarning) {
   const std::string format = GetParam();
-  // fp32 on the default core; the other presets on a core of 16 threads
-  // (its model compiles and runs several times faster; the arithmetic is the
-  // format's all the same) with the widths every case fits pinned, so that
-  // one model serves every case; KDRT_LONG=1: every preset on the default core.
-  const char* long_run = std::getenv("KDRT_LONG");
-  const bool small = format != "fp32" && !(long_run && std::string(long_run) == "1");
-  const std::string core = small ? " --threads 16 --cache-mshrs 16 --stack-depth 32 --node-idx-width 24 "
-                                   "--tri-idx-width 24 --addr-width 28"
-                                 : "";
-  const nlohmann::json j = RunExtremes("--reduced --sim --formats " + format + core, "_sim_" + format);
+  // The small core for the presets other than fp32 (tests/common/test_cores.h):
+  // its pinned widths fit every case, so one model serves them all.
+  const nlohmann::json j =
+      RunExtremes("--reduced --sim --formats " + format + testing::CoreFor(format), "_sim_" + format);
   ASSERT_GE(j["cases"].size(), 20u);
   for (const nlohmann::json& c : j["cases"]) {
     const std::string name = c["case"];

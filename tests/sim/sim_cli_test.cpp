@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/common/run_kdrt.h"
+#include "tests/common/test_cores.h"
 
 #include <sys/inotify.h>
 #include <sys/wait.h>
@@ -43,32 +44,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using testing::CoreFor;
+using testing::LongRun;
 using testing::RunKdrt;
 using testing::RunResult;
+using testing::SmallCore;
 
 std::string ReadBytes(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
 }
 
-bool LongRun() {
-  const char* v = std::getenv("KDRT_LONG");
-  return v && std::string(v) == "1";
-}
-
-// A core of 16 threads and 16 miss registers per cache, its other parameters
-// the defaults. The widths the scene would otherwise size (stack, node and
-// triangle indices, address) are pinned to the defaults so that every scene
-// runs on the same model of a format (with_stack false: the test sets the
-// stack depth itself).
-std::string SmallCore(bool with_stack = true) {
-  return std::string(" --threads 16 --cache-mshrs 16 --node-idx-width 24 --tri-idx-width 24 --addr-width 28") +
-         (with_stack ? " --stack-depth 32" : "");
-}
-
-// The core a preset runs on: the default core for fp32 (and for every preset
-// with KDRT_LONG=1), else the small one.
-std::string CoreFor(const std::string& format) { return format == "fp32" || LongRun() ? "" : SmallCore(); }
 
 class SimCli : public ::testing::Test {
  protected:

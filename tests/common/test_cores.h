@@ -1,0 +1,32 @@
+// The cores the end-to-end tests run the RTL on. fp32 runs on the default
+// core. The other preset formats, and options whose outcome does not depend on
+// how many rays are in flight, run on a small core whose model compiles and
+// simulates several times faster; KDRT_LONG=1 runs every preset on the
+// default core.
+#pragma once
+
+#include <cstdlib>
+#include <string>
+
+namespace kdrt::testing {
+
+inline bool LongRun() {
+  const char* v = std::getenv("KDRT_LONG");
+  return v && std::string(v) == "1";
+}
+
+// `kdrt sim` options for a core of 16 threads and 16 miss registers per
+// cache, its other parameters the defaults. The widths the scene would
+// otherwise size (stack, node and triangle indices, address) are pinned to
+// the defaults so that every scene runs on the same model of a format
+// (with_stack false: the caller sets the stack depth itself).
+inline std::string SmallCore(bool with_stack = true) {
+  return std::string(" --threads 16 --cache-mshrs 16 --node-idx-width 24 --tri-idx-width 24 --addr-width 28") +
+         (with_stack ? " --stack-depth 32" : "");
+}
+
+// The core a preset runs on: the default core for fp32 (and for every preset
+// with KDRT_LONG=1), else the small one.
+inline std::string CoreFor(const std::string& format) { return format == "fp32" || LongRun() ? "" : SmallCore(); }
+
+}  // namespace kdrt::testing
