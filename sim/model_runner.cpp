@@ -96,6 +96,23 @@ std::string ModelName(const ConfigChoice& choice, bool quick) {
   return choice.config.Key() + (quick ? ".quick" : "");
 }
 
+#if defined(KDRT_SIM_MODELS)
+// Appends `line` to the list file unless it holds it already (callers hold
+// the models directory's lock).
+void AppendLineOnce(const fs::path& list, const std::string& line) {
+  {
+    std::ifstream in(list);
+    std::string l;
+    while (std::getline(in, l)) {
+      if (l == line) return;
+    }
+  }
+  std::ofstream out(list, std::ios::app);
+  out << line << "\n";
+  if (!out) throw std::runtime_error("cannot write " + list.string());
+}
+#endif
+
 }  // namespace
 
 bool QuickModels() {
@@ -134,30 +151,23 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
   } unlock{lock};
   if (fs::exists(loc.path) && !OlderThanSources(loc.path)) return;  // another run built it meanwhile
 
-  if (!choice.prebuilt) {
+  if (choice.prebuilt) {
+    // sim/CMakeLists.txt defines the target of a preset that `make build`
+    // does not compile once it is listed here.
+    AppendLineOnce(models_dir / "presets.txt", choice.config.Format().Name());
+  } else {
     // The list sim/CMakeLists.txt defines a target per line of: the key and
     // Verilator's -G options.
     std::string line = ModelName(choice, loc.quick);
     for (const std::string& g : choice.config.VerilatorDefines()) line += " " + g;
-    const fs::path list = models_dir / "models.txt";
-    bool listed = false;
-    {
-      std::ifstream in(list);
-      std::string l;
-      while (std::getline(in, l)) listed = listed || l == line;
-    }
-    if (!listed) {
-      std::ofstream out(list, std::ios::app);
-      out << line << "\n";
-      if (!out) throw std::runtime_error("cannot write " + list.string());
-    }
+    AppendLineOnce(models_dir / "models.txt", line);
   }
   const std::string log = (models_dir / (ModelName(choice, loc.quick) + ".build.log")).string();
   std::fprintf(stderr,
                "kdrt sim: %s the simulation model %s (Verilator, once; minutes: up to about 3 on 2 cores for a 128-thread core)%s\n"
                "kdrt sim: log in %s\n",
                loc.stale ? "sources changed since it was built: rebuilding" : "building", choice.config.Key().c_str(),
-               loc.quick ? ", a quick build (KDRT_QUICK_MODELS: its C++ unoptimised, about 3x less to compile, "
+               loc.quick ? ", a quick build (KDRT_QUICK_MODELS: its C++ unoptimised and without waveforms, a fraction of the compile time, "
                            "several times slower to run)"
                          : "",
                log.c_str());

@@ -68,7 +68,12 @@ class SimCtrl {
     fst_->open(path.c_str());
     if (!fst_->isOpen()) throw std::runtime_error("cannot open waveform file " + path);
 #else
+#if defined(KDRT_SIM_QUICK_BUILD)
+    throw std::runtime_error("cannot write " + path +
+                             ": a quick model build (KDRT_QUICK_MODELS) has no waveforms; unset KDRT_QUICK_MODELS");
+#else
     throw std::runtime_error("cannot write " + path + ": the model was verilated without --trace-fst");
+#endif
 #endif
   }
   void CloseTrace() {
