@@ -255,6 +255,22 @@ RunOutcome CoreHarness::Finish(SimCtrl<Vrt_core>& ctrl, const MemoryModel& memor
   return out;
 }
 
+CoreConfig CompiledConfig() {
+  CoreConfig c;
+#define KDRT_CORE_PARAM(name, ...) c[k##name] = static_cast<int>(Vrt_core_rt_core::name);
+#include "sim/core_params.def"
+#undef KDRT_CORE_PARAM
+  return c;
+}
+
+bool QuickBuild() {
+#ifdef KDRT_SIM_QUICK_BUILD
+  return true;
+#else
+  return false;
+#endif
+}
+
 RunOutcome RunVerilator(const RunSpec& spec) {
   MemoryModel memory(spec.memory);
   memory.LoadImage(std::vector<uint8_t>(spec.image->data(), spec.image->data() + spec.image->size()));

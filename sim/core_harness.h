@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "common/ray.h"
+#include "sim/core_params.h"
 #include "sim/memory_model.h"
 #include "sim/ray_queue.h"
 #include "sim/run_result.h"
@@ -116,5 +117,13 @@ struct RunSpec {
 
 // The plain Verilator loop (sim/sim_ctrl.h) until every hit record is back.
 RunOutcome RunVerilator(const RunSpec& spec);
+
+// The parameters the Verilated core of this executable was built with
+// (rt_core's parameters are /*verilator public*/), and whether it is a quick
+// build (KDRT_QUICK_MODELS). Defined beside the harness, the one file of a
+// model executable besides sc_top.cpp that sees the Verilated classes, so
+// that sim_main.cpp is compiled once for every model.
+CoreConfig CompiledConfig();
+bool QuickBuild();
 
 }  // namespace kdrt::sim

@@ -4,12 +4,12 @@
 // ray file, traces the reference hits itself (the model of its own format),
 // runs the core ray by ray against them, and writes the RTL's hit records and
 // the report of the run. It never loads a scene (docs/simulator.md).
+// Compiled once for every model: what depends on the Verilated core comes
+// from core_harness.cpp and sc_top.cpp (CompiledConfig, RunVerilator, ...).
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 
-#include "Vrt_core.h"
-#include "Vrt_core_rt_core.h"
 #include "common/error.h"
 #include "sim/core_harness.h"
 #include "sim/run_options.h"
@@ -35,16 +35,6 @@ struct ModelArgs {
   bool print_config = false;
   RunOptions run;
 };
-
-// What this executable was built with, as the Verilated core reports it
-// (rt_core's parameters are /*verilator public*/).
-CoreConfig CompiledConfig() {
-  CoreConfig c;
-#define KDRT_CORE_PARAM(name, ...) c[k##name] = static_cast<int>(Vrt_core_rt_core::name);
-#include "sim/core_params.def"
-#undef KDRT_CORE_PARAM
-  return c;
-}
 
 std::vector<uint8_t> ReadFile(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
@@ -160,13 +150,9 @@ int Run(const ModelArgs& args) {
       ri.run = &run;
       report = ReportJson(ri);
     }
-#ifdef KDRT_SIM_QUICK_BUILD
-    // Built for the tests (KDRT_QUICK_MODELS): its sim speed is not the
-    // model's, and the report says so.
-    report["model_build"] = "quick";
-#else
-    report["model_build"] = "optimised";
-#endif
+    // A quick build is made for the tests (KDRT_QUICK_MODELS): its sim speed
+    // is not the model's, and the report says so.
+    report["model_build"] = QuickBuild() ? "quick" : "optimised";
   } catch (const SimFailure& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "\nkdrt sim: %s\n", e.what());
