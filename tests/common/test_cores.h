@@ -25,6 +25,18 @@ inline std::string SmallCore(bool with_stack = true) {
          (with_stack ? " --stack-depth 32" : "");
 }
 
+// A core whose memory system is crowded: 16 threads, 8 miss registers of 2
+// targets per cache, 16-line caches and the list prefetcher at 4 lines, so
+// that misses meet full registers, lines in flight and evictions. The tests
+// of the cache ways and of the prefetcher share its model.
+// (list_prefetch: the prefetcher's depth, for a fast-model run beside it.)
+inline std::string CrowdedMemoryCore(int list_prefetch = 4) {
+  return " --threads 16 --cache-mshrs 8 --cache-targets 2 --list-prefetch " + std::to_string(list_prefetch) +
+         " --node-cache-lines 16 "
+         "--list-cache-lines 16 --tri-cache-lines 16 --node-idx-width 24 --tri-idx-width 24 --addr-width 28 "
+         "--stack-depth 32";
+}
+
 // The core a preset runs on: the default core for fp32 (and for every preset
 // with KDRT_LONG=1), else the small one.
 inline std::string CoreFor(const std::string& format) { return format == "fp32" || LongRun() ? "" : SmallCore(); }

@@ -45,6 +45,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using testing::CoreFor;
+using testing::CrowdedMemoryCore;
 using testing::LongRun;
 using testing::RunKdrt;
 using testing::RunResult;
@@ -366,22 +367,21 @@ INSTANTIATE_TEST_SUITE_P(
 
 // The list prefetcher (--list-prefetch N: rt_list_unit's ListPrefetch and
 // the list cache's prefetch port) cycle for cycle in both models, with few
-// miss registers of few targets and a slow memory so that prefetches meet
-// full registers, lines in flight and demand requests joining them; and it
-// changes what the core does: the list lines it fetches ahead are hits (or
-// joins) for the list unit, so fewer of its requests start a fetch.
+// miss registers of few targets, small caches and a slow memory so that
+// prefetches meet full registers, lines in flight, evictions and demand
+// requests joining them; and it changes what the core does: the list lines
+// it fetches ahead are hits (or joins) for the list unit, so fewer of its
+// requests start a fetch.
 TEST_F(SimCli, ListPrefetchMatchesTheFastModel) {
-  const std::string common =
-      "sim gen:gears:1500 --res 24x24 --threads 16 --cache-mshrs 8 --cache-targets 2 --mem-latency 60 --node-idx-width 24 "
-      "--tri-idx-width 24 --addr-width 28 --stack-depth 32 -q";
+  const std::string common = "sim gen:gears:1500 --res 24x24 --mem-latency 60 -q";
   const RunResult r =
-      RunKdrt(common + " --list-prefetch 4 --model both -o " + Path("x.png") + " --json " + Path("x.json"));
+      RunKdrt(common + CrowdedMemoryCore() + " --model both -o " + Path("x.png") + " --json " + Path("x.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = ReadJson(Path("x.json"));
   ExpectFastEqualsRtl(j);
   EXPECT_EQ(j["model"]["ListPrefetch"], 4);
   const RunResult off =
-      RunKdrt(common + " --list-prefetch 0 --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
+      RunKdrt(common + CrowdedMemoryCore(0) + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
   ASSERT_EQ(off.exit_code, 0) << off.output;
   const nlohmann::json jo = ReadJson(Path("f.json"));
   EXPECT_EQ(ReadBytes(Path("f.png")), ReadBytes(Path("x.png")));
@@ -463,9 +463,7 @@ INSTANTIATE_TEST_SUITE_P(
 // fast model follows the RTL's replacement cycle by cycle, and where the
 // working set crowds 16-line caches 4 ways miss less than direct mapping.
 TEST_F(SimCli, AssociativeCaches) {
-  const std::string common =
-      "sim gen:balls:800 --res 24x24 --node-cache-lines 16 --list-cache-lines 16 --tri-cache-lines 16 -q" +
-      SmallCore();
+  const std::string common = "sim gen:balls:800 --res 24x24 -q" + CrowdedMemoryCore();
   const RunResult r =
       RunKdrt(common + " --cache-ways 4 --model both -o " + Path("x.png") + " --json " + Path("x.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
