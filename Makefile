@@ -55,7 +55,10 @@ demo: demo-build
 	$(KDRT) sim "$$scene" --res $(DEMO_SIM_RES) --shade -o out/demo-sim-shaded.png --json out/demo-sim-shaded.json; \
 	cmp out/demo-shaded.png out/demo-sim-shaded.png && echo "demo: the RTL's shaded frame is the reference's, byte for byte"
 
-test: build
+# The quick RTL models the tests run on (tests/sim/test_models.txt) are built
+# with everything else, so that no test waits for one.
+test: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target all kdrt-test-models
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 test-long: build

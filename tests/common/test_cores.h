@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace kdrt::testing {
 
@@ -40,5 +41,20 @@ inline std::string CrowdedMemoryCore(int list_prefetch = 4) {
 // The core a preset runs on: the default core for fp32 (and for every preset
 // with KDRT_LONG=1), else the small one.
 inline std::string CoreFor(const std::string& format) { return format == "fp32" || LongRun() ? "" : SmallCore(); }
+
+// The cores of the quick models the tests run on, as `kdrt sim` options:
+// tests/sim/test_models.txt lists their models so that `make test` builds
+// them before ctest runs (TestModels.ListIsTheTestsCores checks the list).
+inline std::vector<std::string> TestModelCores() {
+  return {
+      "--format fp16" + SmallCore(),
+      "--format bf16" + SmallCore(),
+      "--format fp24" + SmallCore(),
+      "--format fp16 --trav-format fp32" + SmallCore(),   // SimCli.WiderTraversalRunsInTheRtl
+      "--format fp32 --image-format bf16" + SmallCore(),  // SimCli.NarrowerImageRunsInTheRtl
+      "--format fp32" + CrowdedMemoryCore(),               // SimCli.AssociativeCaches, ListPrefetch...
+      "--format fp32 --stack-depth 3 --allow-overflow" + SmallCore(false),  // SimCli.StackOverflow...
+  };
+}
 
 }  // namespace kdrt::testing

@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <set>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -962,6 +963,33 @@ TEST_F(SimCli, QuickModelsAreKeptApartAndMarked) {
                                         Path("x.json"));
   ASSERT_EQ(prebuilt.exit_code, 0) << prebuilt.output;
   EXPECT_EQ(ReadJson(Path("x.json"))["model_build"], "optimised");
+}
+
+// tests/sim/test_models.txt, the quick models `make test` builds before
+// ctest, are the models of the tests' cores (tests/common/test_cores.h): a
+// core missing from it would be built inside a test, a model no test uses
+// would be built for nothing.
+TEST(TestModels, ListIsTheTestsCores) {
+  std::set<std::string> listed;
+  {
+    std::ifstream f(std::string(KDRT_SOURCE_DIR) + "/tests/sim/test_models.txt");
+    ASSERT_TRUE(f.good());
+    std::string line;
+    while (std::getline(f, line)) {
+      if (!line.empty() && line[0] != '#') listed.insert(line.substr(0, line.find(' ')));
+    }
+  }
+  std::set<std::string> asked;
+  for (const std::string& core : testing::TestModelCores()) {
+    const RunResult r = testing::RunCommand("env KDRT_QUICK_MODELS=1 " + std::string(KDRT_BIN) +
+                                            " sim gen:rings:800 --which-model " + core);
+    ASSERT_EQ(r.exit_code, 0) << core << "\n" << r.output;
+    const size_t end = r.output.find("/kdrt-sim");
+    const size_t begin = r.output.rfind("sim-models/", end);
+    ASSERT_TRUE(end != std::string::npos && begin != std::string::npos) << core << "\n" << r.output;
+    asked.insert(r.output.substr(begin + 11, end - begin - 11));
+  }
+  EXPECT_EQ(listed, asked);
 }
 
 TEST_F(SimCli, ModelChoiceFollowsTheScene) {
