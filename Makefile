@@ -27,14 +27,17 @@ deps:
 demo-deps:
 	@bash scripts/install-deps.sh --demo
 
-# Configuring needs only the demo's packages.
-CONFIGURE = test -f $(BUILD)/build.ninja || cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
+# Configuring needs only the demo's packages. The demo's configuration leaves
+# the tests out (KDRT_TESTS=OFF: no RTL bench is verilated); every other
+# target turns them on, which configures again once.
+CMAKE_CONFIGURE = cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
 
 demo-configure: demo-deps
-	@$(CONFIGURE)
+	@test -f $(BUILD)/build.ninja || $(CMAKE_CONFIGURE) -DKDRT_TESTS=OFF
 
 configure: deps
-	@$(CONFIGURE)
+	@test -f $(BUILD)/build.ninja && grep -q '^KDRT_TESTS:BOOL=ON' $(BUILD)/CMakeCache.txt || \
+	  $(CMAKE_CONFIGURE) -DKDRT_TESTS=ON
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
