@@ -91,7 +91,7 @@ int RunAndWait(const std::vector<std::string>& args) {
 
 // The name of a scene-sized model's directory, its CMake target (after
 // "kdrt-sim-model-") and its line in models.txt: the configuration's key,
-// and ".quick" for a quick build (sim/CMakeLists.txt compiles those at -O0).
+// and ".quick" for a quick build (sim/CMakeLists.txt compiles those as one unit at -O1).
 std::string ModelName(const ConfigChoice& choice, bool quick) {
   return choice.config.Key() + (quick ? ".quick" : "");
 }
@@ -167,8 +167,8 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
                "kdrt sim: %s the simulation model %s (Verilator, once; minutes: up to about 3 on 2 cores for a 128-thread core)%s\n"
                "kdrt sim: log in %s\n",
                loc.stale ? "sources changed since it was built: rebuilding" : "building", choice.config.Key().c_str(),
-               loc.quick ? ", a quick build (KDRT_QUICK_MODELS: its C++ unoptimised and without waveforms, a fraction of the compile time, "
-                           "several times slower to run)"
+               loc.quick ? ", a quick build (KDRT_QUICK_MODELS: its C++ one unit at -O1 without waveforms, a fraction of the compile "
+                           "time, slower to run)"
                          : "",
                log.c_str());
   const auto start = std::chrono::steady_clock::now();

@@ -326,7 +326,7 @@ void PrintReport(const nlohmann::json& j, std::FILE* out) {
                d(rp["leaves"]), d(rp["tri_tests"]));
   std::fprintf(out, "sim speed      %.3f s, %.0f cycles/s, %.0f rays/s%s\n", d(j["sim_seconds"]),
                d(j["sim_cycles_per_second"]), d(j["sim_rays_per_second"]),
-               j.value("model_build", "") == "quick" ? " (a quick build, unoptimised and without waveforms: KDRT_QUICK_MODELS)" : "");
+               j.value("model_build", "") == "quick" ? " (a quick build, one unit at -O1 without waveforms: KDRT_QUICK_MODELS)" : "");
 }
 
 nlohmann::json FrameTotals(const nlohmann::json& passes) {

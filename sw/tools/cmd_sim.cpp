@@ -116,7 +116,7 @@ int RunSim(SimArgs args) {
     std::printf("model          %s (%s)\n", choice.config.Key().c_str(), choice.prebuilt ? "prebuilt" : "scene-sized");
     const char* state = loc.built ? "built" : loc.stale ? "out of date: sources changed, rebuilt on use" : "not built yet";
     std::printf("executable     %s (%s%s)\n", loc.path.c_str(), state,
-                loc.quick ? "; a quick build, unoptimised and without waveforms: KDRT_QUICK_MODELS" : "");
+                loc.quick ? "; a quick build, one unit at -O1 without waveforms: KDRT_QUICK_MODELS" : "");
     std::printf("synthesis      %s (%s)\n", sim::PhysPath(choice.config).c_str(),
                 core_json.is_null() ? "none yet: kdrt synth, or kdrt sim --synth" : "synthesized");
     return 0;

@@ -850,7 +850,7 @@ TEST_F(SimCli, StackOverflowMatchesTheReferenceAndTheFastModel) {
     EXPECT_EQ(f["cycles"], j["cycles"]);
     EXPECT_EQ(f["perf_counts"], j["perf_counts"]);
     EXPECT_EQ(f["thread_states"], j["thread_states"]);
-    // ctest builds it unoptimised (KDRT_QUICK_MODELS), and the report says so.
+    // ctest builds it as a quick build (KDRT_QUICK_MODELS), and the report says so.
     if (sim::QuickModels()) {
       EXPECT_EQ(j["model_build"], "quick");
     }
@@ -955,7 +955,7 @@ TEST_F(SimCli, QuickModelsAreKeptApartAndMarked) {
   ASSERT_EQ(quick.exit_code, 0) << quick.output;
   ASSERT_EQ(full.exit_code, 0) << full.output;
   EXPECT_NE(quick.output.find(".quick/kdrt-sim"), std::string::npos) << quick.output;
-  EXPECT_NE(quick.output.find("a quick build, unoptimised"), std::string::npos) << quick.output;
+  EXPECT_NE(quick.output.find("a quick build, one unit at -O1"), std::string::npos) << quick.output;
   EXPECT_EQ(full.output.find(".quick"), std::string::npos) << full.output;
   EXPECT_EQ(full.output.find("quick build"), std::string::npos) << full.output;
   const RunResult prebuilt = testing::RunCommand("env KDRT_QUICK_MODELS=1 " + std::string(KDRT_BIN) +
