@@ -6,17 +6,17 @@
 // ask in the next cycle (req_next_i), so that the chosen thread's top entry is
 // read from the stack memory (rt_thread_stack) by the time it exits: the
 // choice is the one an arbiter over the requests of the exit cycle would make.
-// For the chosen thread exit_idx_o the
-// caller gives its closest hit and interval end, and exit_done_o is the rule
-// of TraceRay after a leaf (sw/trace/traversal.h):
+// For the chosen thread exit_idx_o the caller gives its closest hit and
+// interval end, and exit_done_o is the rule of TraceRay after a leaf
+// (sw/trace/traversal.h):
 //   if hit and (any-hit query or best.t <= t1): done; if the stack is empty: done;
 //   pop; if hit and best.t < popped t0: done
 // except that while the thread's stack holds an entry whose t0 is NaN (the
 // far child of a node whose split plane the ray lies in, InPlane in
 // traversal.h), neither hit rule ends a closest-hit ray: only the empty
 // stack does. A counter per thread holds the number of such entries.
-// The decision in one cycle: the top entry is looked at before the pop, and the stack
-// is popped only when the thread goes on (exit_done_o low), to the popped
+// The decision in one cycle: the top entry is looked at before the pop, and
+// the stack is popped only when the thread goes on (exit_done_o low), to the popped
 // node with [pop_t0_o, pop_t1_o]. Stacks are cleared for a new ray (clear_i)
 // and pushed by traversal steps (push_i; push_full_o: the push is dropped,
 // the ray overflows), with rt_thread_stack's rules when events collide.
