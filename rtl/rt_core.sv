@@ -136,7 +136,7 @@ module rt_core #(
 
   // The threads in FREE, FETCH, EXIT and DONE, and the ones chosen: the lowest
   // free thread takes the next ray, arbiters pick a leaf exit and a hit out.
-  logic [Threads-1:0] is_free, is_fetch, is_exit, is_done;
+  logic [Threads-1:0] is_free, is_fetch, is_exit, is_done, exit_next;
   logic [ThW-1:0]     alloc_idx, exit_idx, out_idx;
   assign busy_o = ~&is_free;
 
@@ -255,7 +255,7 @@ module rt_core #(
   rt_leaf_exit #(.E(E), .M(M), .Threads(Threads), .StackDepth(StackDepth), .NodeIdxWidth(NodeIdxWidth)) u_exit (
     .clk_i, .rst_ni, .clear_i(setup_fire), .clear_idx_i(setup_tag),
     .push_i(trav_push), .push_idx_i(trav_tag), .push_node_i(trav_second), .push_t0_i(trav_ts_lo),
-    .push_t1_i(trav_t1), .push_full_o(stack_full), .req_i(is_exit), .exit_valid_o(exit_valid),
+    .push_t1_i(trav_t1), .push_full_o(stack_full), .req_next_i(exit_next), .exit_valid_o(exit_valid),
     .exit_idx_o(exit_idx), .exit_any_i(any_q[exit_idx]), .exit_hit_i(exit_hit), .exit_best_t_i(exit_best_t),
     .exit_t1_i(t1_q[exit_idx]), .exit_done_o(exit_done), .pop_node_o(pop_node), .pop_t0_o(pop_t0),
     .pop_t1_o(pop_t1)
@@ -358,6 +358,7 @@ module rt_core #(
   // ------------------------------------------------------------ thread states and table updates
   rt_thread_fsm #(.Threads(Threads), .CountWidth(CountW)) u_fsm (
     .clk_i, .rst_ni, .free_o(is_free), .fetch_o(is_fetch), .exit_o(is_exit), .done_o(is_done),
+    .exit_next_o(exit_next),
     .state_o(thread_state_o),
     .alloc_idx_o(alloc_idx), .alloc_i(ray_fire), .setup_i(setup_fire), .setup_idx_i(setup_tag),
     .clip_i(clip_valid), .clip_idx_i(clip_tag), .clip_miss_i(clip_miss), .fetch_i(fetch_fire),
@@ -369,27 +370,37 @@ module rt_core #(
     .out_i(out_fire), .out_idx_i(out_idx)
   );
 
-  // Each event names one thread (one-hot here), which is always in the
-  // event's state (rt_thread_fsm checks), so one thread's events never collide.
-  wire [Threads-1:0] on_alloc = onehot(ray_fire, alloc_idx), on_setup = onehot(setup_fire, setup_tag),
-                     on_clip = onehot(clip_valid, clip_tag), on_node = onehot(node_fire, node_tag),
-                     on_trav = onehot(trav_valid, trav_tag), on_exit = onehot(exit_valid, exit_idx);
-
+  // Each event names one thread, which is always in the event's state
+  // (rt_thread_fsm checks), so one thread's events never collide: each event
+  // writes its thread's fields through one write port of the table.
   always_ff @(posedge clk_i) begin
-    for (int t = 0; t < Threads; t++) begin
-      if (on_alloc[t]) {ray_id_q[t], any_q[t]} <= {ray_id_i, ray_any_i};
-      if (on_setup[t]) begin
-        {o_q[t], d_q[t], inv_q[t], tmin_q[t]} <= {setup_o, setup_d, setup_inv, setup_tmin};
-        t_scale_q[t] <= setup_t_scale;
-        {shear_q[t], axes_q[t]} <= {setup_sz, setup_sy, setup_sx, setup_kz, setup_ky, setup_kx};
-        {ovf_q[t], node_q[t]} <= '0;
-      end
-      if (on_clip[t]) {t0_q[t], t1_q[t]} <= {clip_t0, clip_t1};
-      if (on_node[t] && job_push) leaf_tmax_q[t] <= leaf_best_t;
-      if (on_trav[t]) node_q[t] <= (trav_action == kdrt_pkg::TravSecond) ? trav_second : trav_first;
-      if (on_trav[t] && trav_push) t1_q[t] <= trav_ts_hi;
-      if (on_trav[t] && trav_overflow) ovf_q[t] <= 1'b1;
-      if (on_exit[t] && !exit_done) {node_q[t], t0_q[t], t1_q[t]} <= {pop_node, pop_t0, pop_t1};
+    if (ray_fire) begin
+      ray_id_q[alloc_idx] <= ray_id_i;
+      any_q[alloc_idx] <= ray_any_i;
+    end
+    if (setup_fire) begin
+      o_q[setup_tag] <= setup_o;
+      d_q[setup_tag] <= setup_d;
+      inv_q[setup_tag] <= setup_inv;
+      tmin_q[setup_tag] <= setup_tmin;
+      t_scale_q[setup_tag] <= setup_t_scale;
+      shear_q[setup_tag] <= {setup_sz, setup_sy, setup_sx};
+      axes_q[setup_tag] <= {setup_kz, setup_ky, setup_kx};
+      ovf_q[setup_tag] <= 1'b0;
+      node_q[setup_tag] <= '0;
+    end
+    if (clip_valid) begin
+      t0_q[clip_tag] <= clip_t0;
+      t1_q[clip_tag] <= clip_t1;
+    end
+    if (node_fire && job_push) leaf_tmax_q[node_tag] <= leaf_best_t;
+    if (trav_valid) node_q[trav_tag] <= (trav_action == kdrt_pkg::TravSecond) ? trav_second : trav_first;
+    if (trav_push) t1_q[trav_tag] <= trav_ts_hi;
+    if (trav_overflow) ovf_q[trav_tag] <= 1'b1;
+    if (exit_valid && !exit_done) begin
+      node_q[exit_idx] <= pop_node;
+      t0_q[exit_idx] <= pop_t0;
+      t1_q[exit_idx] <= pop_t1;
     end
   end
 

@@ -66,13 +66,23 @@ module rt_hit_merge #(
   assign cand_take_o = cand_valid_i && cand_hit_i &&
                        (t_lt_best || (t_eq_best && (!hit_q[cand_idx_i] || cand_prim_i < prim_q[cand_idx_i])));
 
+  // One write port for the init, one for the result (never the init's thread).
+  logic cand_write;
+  assign cand_write = cand_take_o && !(init_i && init_idx_i == cand_idx_i);
   always_ff @(posedge clk_i) begin
-    for (int t = 0; t < Threads; t++) begin
-      if (init_i && init_idx_i == ThW'(t)) begin
-        {hit_q[t], t_q[t], u_q[t], v_q[t], prim_q[t]} <= {1'b0, init_t_i, {2 * W{1'b0}}, {PrimWidth{1'b1}}};
-      end else if (cand_take_o && cand_idx_i == ThW'(t)) begin
-        {hit_q[t], t_q[t], u_q[t], v_q[t], prim_q[t]} <= {1'b1, cand_t_i, cand_u_i, cand_v_i, cand_prim_i};
-      end
+    if (init_i) begin
+      hit_q[init_idx_i] <= 1'b0;
+      t_q[init_idx_i] <= init_t_i;
+      u_q[init_idx_i] <= '0;
+      v_q[init_idx_i] <= '0;
+      prim_q[init_idx_i] <= '1;
+    end
+    if (cand_write) begin
+      hit_q[cand_idx_i] <= 1'b1;
+      t_q[cand_idx_i] <= cand_t_i;
+      u_q[cand_idx_i] <= cand_u_i;
+      v_q[cand_idx_i] <= cand_v_i;
+      prim_q[cand_idx_i] <= cand_prim_i;
     end
   end
 

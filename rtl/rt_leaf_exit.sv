@@ -1,18 +1,22 @@
 // rt_leaf_exit: the per-thread traversal stacks and the leaf-exit decision of
 // rt_core (docs/core-interface.md).
 //
-// A thread whose leaf is done asks to exit (req_i); the round-robin arbiter
-// takes one a cycle (no backpressure). For the chosen thread exit_idx_o the
-// caller gives its closest hit and interval end, and exit_done_o is the rule
-// of TraceRay after a leaf (sw/trace/traversal.h):
+// A thread whose leaf is done asks to exit; the round-robin arbiter takes one
+// a cycle (no backpressure). It chooses a cycle ahead, among the threads that
+// ask in the next cycle (req_next_i), so that the chosen thread's top entry is
+// read from the stack memory (rt_thread_stack) by the time it exits: the
+// choice is the one an arbiter over the requests of the exit cycle would make.
+// For the chosen thread exit_idx_o the caller gives its closest hit and
+// interval end, and exit_done_o is the rule of TraceRay after a leaf
+// (sw/trace/traversal.h):
 //   if hit and (any-hit query or best.t <= t1): done; if the stack is empty: done;
 //   pop; if hit and best.t < popped t0: done
 // except that while the thread's stack holds an entry whose t0 is NaN (the
 // far child of a node whose split plane the ray lies in, InPlane in
 // traversal.h), neither hit rule ends a closest-hit ray: only the empty
 // stack does. A counter per thread holds the number of such entries.
-// All in one cycle: the top entry is looked at before the pop, and the stack
-// is popped only when the thread goes on (exit_done_o low), to the popped
+// The decision in one cycle: the top entry is looked at before the pop, and
+// the stack is popped only when the thread goes on (exit_done_o low), to the popped
 // node with [pop_t0_o, pop_t1_o]. Stacks are cleared for a new ray (clear_i)
 // and pushed by traversal steps (push_i; push_full_o: the push is dropped,
 // the ray overflows), with rt_thread_stack's rules when events collide.
@@ -41,8 +45,8 @@ module rt_leaf_exit #(
   input  logic [W-1:0]            push_t0_i,
   input  logic [W-1:0]            push_t1_i,
   output logic                    push_full_o,  // push_idx_i's stack is full: the push is dropped
-  // the threads whose leaf is done
-  input  logic [Threads-1:0]      req_i,
+  // the threads whose leaf is done, in the next cycle
+  input  logic [Threads-1:0]      req_next_i,
   output logic                    exit_valid_o,
   output logic [ThW-1:0]          exit_idx_o,
   // exit_idx_o's closest hit (hit, t), interval end t1, and whether its ray
@@ -64,15 +68,28 @@ module rt_leaf_exit #(
   logic pop_ok, push_ok, push_in_plane, pop_in_plane, exit_in_plane;
   logic [SpW-1:0] in_plane_q [Threads];  // entries with a NaN t0 on each thread's stack
 
+  // The next cycle's choice, registered. The arbiter's pointer moves with
+  // its grants, so it is where the exit cycle's arbiter's would be.
+  logic           next_valid;
+  logic [ThW-1:0] next_idx;
   rt_rr_arb #(.N(Threads)) u_arb (
-    .clk_i, .rst_ni, .req_i, .ack_i(1'b1), .valid_o(exit_valid_o), .idx_o(exit_idx_o)
+    .clk_i, .rst_ni, .req_i(req_next_i), .ack_i(1'b1), .valid_o(next_valid), .idx_o(next_idx)
   );
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      exit_valid_o <= 1'b0;
+      exit_idx_o <= '0;
+    end else begin
+      exit_valid_o <= next_valid;
+      exit_idx_o <= next_idx;
+    end
+  end
 
   rt_thread_stack #(.Threads(Threads), .StackDepth(StackDepth), .Width(NodeIdxWidth + 2 * W)) u_stack (
     .clk_i, .rst_ni, .clear_i, .clear_idx_i,
     .push_i, .push_idx_i, .push_data_i({push_node_i, push_t0_i, push_t1_i}), .push_full_o,
-    .pop_i(pop_ok), .pop_idx_i(exit_idx_o),
-    .pop_empty_o(stack_empty), .top_o({pop_node_o, pop_t0_o, pop_t1_o})
+    .read_idx_i(next_idx), .top_empty_o(stack_empty), .top_o({pop_node_o, pop_t0_o, pop_t1_o}),
+    .pop_i(pop_ok)
   );
 
   fp_cmp #(.E(E), .M(M), .Stages(0)) u_cmp_t1 (
@@ -96,19 +113,18 @@ module rt_leaf_exit #(
   assign push_in_plane = (&push_t0_i[W-2:M]) && (|push_t0_i[M-1:0]);
   assign pop_in_plane = (&pop_t0_o[W-2:M]) && (|pop_t0_o[M-1:0]);
 
+  // One update per thread: the events name different threads here.
+  logic push_wins;
+  assign push_wins = push_ok && !(pop_ok && push_idx_i == exit_idx_o);
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       for (int t = 0; t < Threads; t++) in_plane_q[t] <= '0;
     end else begin
-      for (int t = 0; t < Threads; t++) begin
-        if (pop_ok && exit_idx_o == ThW'(t)) begin
-          if (pop_in_plane) in_plane_q[t] <= in_plane_q[t] - 1'b1;
-        end else if (push_ok && push_idx_i == ThW'(t)) begin
-          if (push_in_plane) in_plane_q[t] <= in_plane_q[t] + 1'b1;
-        end else if (clear_i && clear_idx_i == ThW'(t)) begin
-          in_plane_q[t] <= '0;
-        end
+      if (clear_i && !(push_ok && push_idx_i == clear_idx_i) && !(pop_ok && exit_idx_o == clear_idx_i)) begin
+        in_plane_q[clear_idx_i] <= '0;
       end
+      if (push_wins && push_in_plane) in_plane_q[push_idx_i] <= in_plane_q[push_idx_i] + 1'b1;
+      if (pop_ok && pop_in_plane) in_plane_q[exit_idx_o] <= in_plane_q[exit_idx_o] - 1'b1;
     end
   end
 

@@ -32,6 +32,8 @@ module rt_thread_fsm #(
   output logic [Threads-1:0]    fetch_o,
   output logic [Threads-1:0]    exit_o,
   output logic [Threads-1:0]    done_o,
+  // the threads in EXIT in the next cycle (after this cycle's events)
+  output logic [Threads-1:0]    exit_next_o,
   output logic [ThW-1:0]        alloc_idx_o,
   // every thread's state, 3 bits each, thread t in [3t+2:3t]: the encoding
   // of state_e below (sim/sim_report.cpp names them in this order)
@@ -70,22 +72,26 @@ module rt_thread_fsm #(
     SFree, SSetup, SFetch, SWaitNode, STrav, SLeaf, SExit, SDone
   } state_e;
 
-  state_e                state_q [Threads], state_d [Threads];
+  // The states as one vector of threads per state (each thread in exactly
+  // one), updated by the events, the encoded states beside them for state_o,
+  // and the counters, each written through the ports of the events that
+  // change them: a cycle's work does not grow with the thread count beyond
+  // the vectors' width.
+  logic [Threads-1:0]    free_q, setup_q, fetch_q, wait_q, trav_q, leaf_q, exit_q, done_q;
+  logic [Threads-1:0]    free_d, setup_d, fetch_d, wait_d, trav_d, leaf_d, exit_d, done_d;
+  logic [3*Threads-1:0]  state_q;
   logic [CountWidth-1:0] remaining_q [Threads];    // tests of the leaf not yet issued
   logic [CountWidth-1:0] outstanding_q [Threads];  // tests issued, results not yet back
 
-  logic [Threads-1:0] is_setup, is_wait, is_trav, is_leaf;
-  always_comb begin
-    for (int t = 0; t < Threads; t++) begin
-      {done_o[t], exit_o[t], is_leaf[t], is_trav[t], is_wait[t], fetch_o[t], is_setup[t], free_o[t]} =
-          8'b1 << state_q[t];
-    end
-  end
+  assign {free_o, fetch_o, exit_o, done_o} = {free_q, fetch_q, exit_q, done_q};
+  assign exit_next_o = exit_d;
+  assign state_o = state_q;
   // The lowest free thread (0 when none is free), in log2(Threads) levels.
   logic unused_any_free;
-  rt_prio_enc #(.N(Threads)) u_alloc_enc (.req_i(free_o), .valid_o(unused_any_free), .idx_o(alloc_idx_o));
+  rt_prio_enc #(.N(Threads)) u_alloc_enc (.req_i(free_q), .valid_o(unused_any_free), .idx_o(alloc_idx_o));
 
-  // Each event as a one-hot vector of threads.
+  // Each event as a one-hot vector of threads, kept only for a thread in the
+  // event's state (others are ignored).
   function automatic logic [Threads-1:0] event_threads(input logic en, input logic [ThW-1:0] idx);
     event_threads = en ? Threads'(1) << idx : '0;
   endfunction
@@ -101,57 +107,104 @@ module rt_thread_fsm #(
   assign on_exit = event_threads(exit_i, exit_idx_i);
   assign on_out = event_threads(out_i, out_idx_i);
 
-  // One case per state, looking at that state's events only.
+  // A thread in LEAF leaves in the cycle after its counters are both zero.
+  // They reach zero only through an event of that thread (a result, a test
+  // issued, or a leaf of no tests), at most three a cycle: those threads,
+  // registered, leave in the next cycle.
+  localparam int unsigned Zs = 3;  // issue, retire, node
+  logic [Zs-1:0]  zero_d, zero_q;
+  logic [ThW-1:0] zero_idx_d [Zs], zero_idx_q [Zs];
+  logic [Threads-1:0] a_alloc, a_clip, a_fetch, a_node, a_trav, a_leaf, a_exit, a_out;
+  logic               issue_ok, retire_ok, node_ok, both;
+  assign issue_ok = issue_i && leaf_q[issue_idx_i];
+  assign retire_ok = retire_i && leaf_q[retire_idx_i];
+  assign node_ok = node_i && wait_q[node_idx_i];
+  assign both = issue_ok && retire_ok && issue_idx_i == retire_idx_i;
+  // Issue and result of one thread leave the tests in flight as they are.
+  assign zero_d[0] = issue_ok && remaining_q[issue_idx_i] == CountWidth'(1) &&
+                     outstanding_q[issue_idx_i] == '0 && both;
+  assign zero_d[1] = retire_ok && !both && remaining_q[retire_idx_i] == '0 &&
+                     outstanding_q[retire_idx_i] == CountWidth'(1);
+  assign zero_d[2] = node_ok && node_leaf_i && node_job_i && node_tests_i == '0;
+  assign zero_idx_d[0] = issue_idx_i;
+  assign zero_idx_d[1] = retire_idx_i;
+  assign zero_idx_d[2] = node_idx_i;
   always_comb begin
-    for (int t = 0; t < Threads; t++) begin
-      state_d[t] = state_q[t];
-      unique case (state_q[t])
-        SFree:     if (on_alloc[t]) state_d[t] = SSetup;
-        SSetup:    if (on_clip[t]) state_d[t] = clip_miss_i ? SDone : SFetch;
-        SFetch:    if (on_fetch[t]) state_d[t] = SWaitNode;
-        SWaitNode: if (on_node[t]) state_d[t] = !node_leaf_i ? STrav : node_job_i ? SLeaf : SExit;
-        STrav:     if (on_trav[t]) state_d[t] = trav_overflow_i ? SDone : SFetch;
-        SLeaf:     if (remaining_q[t] == '0 && outstanding_q[t] == '0) state_d[t] = SExit;
-        SExit:     if (on_exit[t]) state_d[t] = exit_done_i ? SDone : SFetch;
-        SDone:     if (on_out[t]) state_d[t] = SFree;
-        default:   ;
-      endcase
-    end
+    a_leaf = '0;
+    for (int z = 0; z < Zs; z++) a_leaf |= event_threads(zero_q[z], zero_idx_q[z]);
+    a_leaf &= leaf_q;
   end
-  for (genvar t = 0; t < Threads; t++) begin : g_state_out
-    assign state_o[3*t +: 3] = state_q[t];
-  end
+
+  assign a_alloc = on_alloc & free_q;
+  assign a_clip = on_clip & setup_q;
+  assign a_fetch = on_fetch & fetch_q;
+  assign a_node = on_node & wait_q;
+  assign a_trav = on_trav & trav_q;
+  assign a_exit = on_exit & exit_q;
+  assign a_out = on_out & done_q;
+  assign free_d = (free_q & ~a_alloc) | a_out;
+  assign setup_d = (setup_q & ~a_clip) | a_alloc;
+  assign fetch_d = (fetch_q & ~a_fetch) | (clip_miss_i ? '0 : a_clip) | (trav_overflow_i ? '0 : a_trav) |
+                   (exit_done_i ? '0 : a_exit);
+  assign wait_d = (wait_q & ~a_node) | a_fetch;
+  assign trav_d = (trav_q & ~a_trav) | (node_leaf_i ? '0 : a_node);
+  assign leaf_d = (leaf_q & ~a_leaf) | (node_leaf_i && node_job_i ? a_node : '0);
+  assign exit_d = (exit_q & ~a_exit) | a_leaf | (node_leaf_i && !node_job_i ? a_node : '0);
+  assign done_d = (done_q & ~a_out) | (clip_miss_i ? a_clip : '0) | (trav_overflow_i ? a_trav : '0) |
+                  (exit_done_i ? a_exit : '0);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      for (int t = 0; t < Threads; t++) state_q[t] <= SFree;
+      {free_q, setup_q, fetch_q, wait_q, trav_q, leaf_q, exit_q, done_q} <= {{Threads{1'b1}}, {7 * Threads{1'b0}}};
+      zero_q <= '0;
     end else begin
-      for (int t = 0; t < Threads; t++) state_q[t] <= state_d[t];
+      {free_q, setup_q, fetch_q, wait_q, trav_q, leaf_q, exit_q, done_q} <=
+          {free_d, setup_d, fetch_d, wait_d, trav_d, leaf_d, exit_d, done_d};
+      zero_q <= zero_d;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    for (int z = 0; z < Zs; z++) zero_idx_q[z] <= zero_idx_d[z];
+  end
+
+  // The encoded states: each event writes its thread's (the threads differ:
+  // each is in its event's state; the two fetches name two threads).
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      state_q <= {Threads{SFree}};
+    end else begin
+      if (alloc_i && free_q[alloc_idx_o]) state_q[3*alloc_idx_o +: 3] <= SSetup;
+      if (clip_i && setup_q[clip_idx_i]) state_q[3*clip_idx_i +: 3] <= clip_miss_i ? SDone : SFetch;
+      if (fetch_i && fetch_q[fetch_idx_i]) state_q[3*fetch_idx_i +: 3] <= SWaitNode;
+      if (fetch2_i && fetch_q[fetch2_idx_i]) state_q[3*fetch2_idx_i +: 3] <= SWaitNode;
+      if (node_ok) state_q[3*node_idx_i +: 3] <= !node_leaf_i ? STrav : node_job_i ? SLeaf : SExit;
+      if (trav_i && trav_q[trav_idx_i]) state_q[3*trav_idx_i +: 3] <= trav_overflow_i ? SDone : SFetch;
+      for (int z = 0; z < Zs; z++) begin
+        if (zero_q[z] && leaf_q[zero_idx_q[z]]) state_q[3*zero_idx_q[z] +: 3] <= SExit;
+      end
+      if (exit_i && exit_q[exit_idx_i]) state_q[3*exit_idx_i +: 3] <= exit_done_i ? SDone : SFetch;
+      if (out_i && done_q[out_idx_i]) state_q[3*out_idx_i +: 3] <= SFree;
     end
   end
 
   always_ff @(posedge clk_i) begin
-    for (int t = 0; t < Threads; t++) begin
-      unique case (state_q[t])
-        SSetup: if (on_setup[t]) {remaining_q[t], outstanding_q[t]} <= '0;
-        SWaitNode: if (on_node[t] && node_job_i) remaining_q[t] <= node_tests_i;
-        SLeaf: begin  // tests issued and results returned, possibly both in one cycle
-          if (on_issue[t]) remaining_q[t] <= remaining_q[t] - 1'b1;
-          if (on_issue[t] && !on_retire[t]) outstanding_q[t] <= outstanding_q[t] + 1'b1;
-          if (!on_issue[t] && on_retire[t]) outstanding_q[t] <= outstanding_q[t] - 1'b1;
-        end
-        default: ;
-      endcase
+    if (setup_i && setup_q[setup_idx_i]) begin
+      remaining_q[setup_idx_i] <= '0;
+      outstanding_q[setup_idx_i] <= '0;
     end
+    if (node_ok && node_job_i) remaining_q[node_idx_i] <= node_tests_i;
+    if (issue_ok) remaining_q[issue_idx_i] <= remaining_q[issue_idx_i] - 1'b1;
+    if (issue_ok && !both) outstanding_q[issue_idx_i] <= outstanding_q[issue_idx_i] + 1'b1;
+    if (retire_ok && !both) outstanding_q[retire_idx_i] <= outstanding_q[retire_idx_i] - 1'b1;
   end
 
 `ifndef SYNTHESIS
   always_ff @(posedge clk_i) begin
-    if (rst_ni) assert ((on_alloc & ~free_o) == '0 && ((on_setup | on_clip) & ~is_setup) == '0 &&
-                        (on_fetch & ~fetch_o) == '0 &&
-                        (on_node & ~is_wait) == '0 && (on_trav & ~is_trav) == '0 &&
-                        ((on_issue | on_retire) & ~is_leaf) == '0 && (on_exit & ~exit_o) == '0 &&
-                        (on_out & ~done_o) == '0)
+    if (rst_ni) assert ((on_alloc & ~free_q) == '0 && ((on_setup | on_clip) & ~setup_q) == '0 &&
+                        (on_fetch & ~fetch_q) == '0 &&
+                        (on_node & ~wait_q) == '0 && (on_trav & ~trav_q) == '0 &&
+                        ((on_issue | on_retire) & ~leaf_q) == '0 && (on_exit & ~exit_q) == '0 &&
+                        (on_out & ~done_q) == '0)
       else $error("rt_thread_fsm: an event for a thread that is not in the event's state");
   end
 `endif

@@ -1,20 +1,29 @@
-// rt_thread_stack: one traversal stack of StackDepth entries per thread, in
-// registers, with a stack pointer per thread.
+// rt_thread_stack: one traversal stack of StackDepth entries per thread, the
+// entries of all threads in one memory (rt_ram_1r1w: one write port, one
+// registered read port, Threads * StackDepth words, thread t's entry k at
+// t * StackDepth + k), a stack pointer per thread beside it.
+//
+// The top entry is read a cycle ahead: read_idx_i names the thread whose top
+// the next cycle looks at, and from then on top_o and top_empty_o are that
+// thread's top entry and emptiness as they are after this cycle's events,
+// and pop_i pops that thread's stack. The read forwards what this cycle does
+// to the thread (a pop: the entry below the top; a push: the pushed entry; a
+// clear: empty), so a thread may be read in any cycle.
 //
 // In one cycle a thread's stack may be cleared (a new ray), another's pushed
 // and another's popped; if they name the same thread, the pop wins over the
 // push and the push over the clear. A push onto a full stack is dropped
 // (push_full_o tells the caller: the ray overflowed) and a pop of an empty
-// stack does nothing. top_o is the top entry of pop_idx_i's stack (entry 0
-// when it is empty), read combinationally, so the caller can look at it
-// before it decides to pop.
+// stack does nothing. top_o is unknown when the stack is empty.
 `default_nettype none
 
 module rt_thread_stack #(
   parameter int unsigned Threads = 32,
   parameter int unsigned StackDepth = 32,
   parameter int unsigned Width = 8,
-  localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1
+  localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1,
+  localparam int unsigned Words = Threads * StackDepth,
+  localparam int unsigned AddrW = (Words > 1) ? $clog2(Words) : 1
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,
@@ -24,45 +33,80 @@ module rt_thread_stack #(
   input  logic [ThW-1:0]   push_idx_i,
   input  logic [Width-1:0] push_data_i,
   output logic             push_full_o,   // push_idx_i's stack holds StackDepth entries
-  input  logic             pop_i,
-  input  logic [ThW-1:0]   pop_idx_i,
-  output logic             pop_empty_o,   // pop_idx_i's stack is empty
-  output logic [Width-1:0] top_o
+  input  logic [ThW-1:0]   read_idx_i,    // the thread whose top the next cycle looks at
+  output logic             top_empty_o,   // the thread read in the previous cycle: its stack is empty
+  output logic [Width-1:0] top_o,         // its top entry
+  input  logic             pop_i          // pop its stack
 );
 
   localparam int unsigned SpW = $clog2(StackDepth + 1);
 
+  function automatic logic [AddrW-1:0] addr(input logic [ThW-1:0] idx, input logic [SpW-1:0] k);
+    addr = AddrW'(32'(idx) * StackDepth + 32'(k));
+  endfunction
+
   logic [SpW-1:0]   sp_q [Threads];
-  logic [Width-1:0] mem_q [Threads * StackDepth];  // thread t's entry k at t * StackDepth + k
+  logic [ThW-1:0]   top_idx_q;     // the thread on top_o
+  logic             empty_q, fwd_q;
+  logic [Width-1:0] fwd_data_q;    // the entry pushed onto it as it was read
+  logic [Width-1:0] ram_rdata;
 
-  logic [SpW-1:0] push_sp, pop_sp;
-  logic           push_ok, pop_ok;
+  logic [SpW-1:0] push_sp, pop_sp, read_sp, read_sp_next;
+  logic           push_ok, pop_ok, push_wins, read_popped, read_pushed, read_cleared;
   assign push_sp = sp_q[push_idx_i];
-  assign pop_sp = sp_q[pop_idx_i];
+  assign pop_sp = sp_q[top_idx_q];
+  assign read_sp = sp_q[read_idx_i];
   assign push_full_o = push_sp == SpW'(StackDepth);
-  assign pop_empty_o = pop_sp == '0;
   assign push_ok = push_i && !push_full_o;
-  assign pop_ok = pop_i && !pop_empty_o;
-  assign top_o = mem_q[32'(pop_idx_i) * StackDepth + (pop_empty_o ? 0 : 32'(pop_sp) - 1)];
+  assign pop_ok = pop_i && !empty_q;
+  assign push_wins = push_ok && !(pop_ok && push_idx_i == top_idx_q);
 
+  // The read thread's pointer after this cycle, with the events' priorities.
+  assign read_popped = pop_ok && top_idx_q == read_idx_i;
+  assign read_pushed = !read_popped && push_ok && push_idx_i == read_idx_i;
+  assign read_cleared = !read_popped && !read_pushed && clear_i && clear_idx_i == read_idx_i;
+  always_comb begin
+    read_sp_next = read_sp;
+    if (read_popped) read_sp_next = read_sp - 1'b1;
+    else if (read_pushed) read_sp_next = read_sp + 1'b1;
+    else if (read_cleared) read_sp_next = '0;
+  end
+
+  rt_ram_1r1w #(.Words(Words), .Width(Width)) u_ram (
+    .clk_i, .we_i(push_ok), .waddr_i(addr(push_idx_i, push_sp)), .wdata_i(push_data_i),
+    .re_i(read_sp_next != '0 && !read_pushed), .raddr_i(addr(read_idx_i, read_sp_next - 1'b1)),
+    .rdata_o(ram_rdata)
+  );
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      top_idx_q <= '0;
+      empty_q <= 1'b1;
+      fwd_q <= 1'b0;
+    end else begin
+      top_idx_q <= read_idx_i;
+      empty_q <= read_sp_next == '0;
+      fwd_q <= read_pushed;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (read_pushed) fwd_data_q <= push_data_i;
+  end
+  assign top_empty_o = empty_q;
+  assign top_o = fwd_q ? fwd_data_q : ram_rdata;
+
+  // The pointers: the events name different threads here (the pop wins over
+  // the push, the push over the clear), so each thread takes one update.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       for (int t = 0; t < Threads; t++) sp_q[t] <= '0;
     end else begin
-      for (int t = 0; t < Threads; t++) begin
-        if (pop_ok && pop_idx_i == ThW'(t)) begin
-          sp_q[t] <= pop_sp - 1'b1;
-        end else if (push_ok && push_idx_i == ThW'(t)) begin
-          sp_q[t] <= push_sp + 1'b1;
-        end else if (clear_i && clear_idx_i == ThW'(t)) begin
-          sp_q[t] <= '0;
-        end
+      if (clear_i && !(push_ok && push_idx_i == clear_idx_i) && !(pop_ok && top_idx_q == clear_idx_i)) begin
+        sp_q[clear_idx_i] <= '0;
       end
+      if (push_wins) sp_q[push_idx_i] <= push_sp + 1'b1;
+      if (pop_ok) sp_q[top_idx_q] <= pop_sp - 1'b1;
     end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (push_ok) mem_q[32'(push_idx_i) * StackDepth + 32'(push_sp)] <= push_data_i;
   end
 
 endmodule

@@ -27,10 +27,11 @@ synth_parse_params() {
 }
 
 # The arrays kept as SRAM macros with --sram: the caches' line arrays
-# (rt_cache's data_q: one write port, one read port registered inside the
-# array, as an SRAM compiler's macro reads). Every other memory (tags, stacks:
-# read in the cycle they are addressed) is built from flip-flops.
-SYNTH_SRAM_LINES='t:$mem_v2 n:*data_q %i'
+# (rt_cache's data_q) and the memories of rt_ram_1r1w (sram_q: the traversal
+# stacks), each with one write port and one read port registered inside the
+# array, as an SRAM compiler's macro reads. Every other memory (tags, thread
+# tables: read in the cycle they are addressed) is built from flip-flops.
+SYNTH_SRAM_LINES='t:$mem_v2 n:*data_q n:*sram_q %u %i'
 
 # synth_sram_flow UNIT: Yosys' `synth -flatten` up to its fine stage with the
 # line arrays left out of memory_map (the rest of Yosys 0.23's fine stage:

@@ -4,9 +4,9 @@
 Yosys elaborates rt_core with the given parameters and lists the units it
 instantiates with their parameters (rt_core derives them: the script does not
 repeat that). Each distinct unit (module and parameters) is synthesized once
-by scripts/synth-phys.sh (identical instances are counted), rt_mem_system with
---sram (its caches' line arrays are SRAM macros, area and access time from
-scripts/sram_model.txt), and rt_core's own logic (thread table, ...) with its
+by scripts/synth-phys.sh (identical instances are counted), rt_mem_system and
+rt_leaf_exit with --sram (the caches' line arrays and the stacks' memory are
+SRAM macros, area and access time from scripts/sram_model.txt), and rt_core's own logic (thread table, ...) with its
 units cut out as unit "rt_core" (--glue). A unit that fails or exceeds the
 memory or time cap is estimated: synthesized at two smaller sizes (Threads,
 Jobs, N or CacheMshrs divided by 8 and 16, then 16 and 32, ...) and extrapolated,
@@ -53,8 +53,10 @@ DEFAULT_LIB = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib"
 # Changes when scripts/synth-phys.sh's flow gives other numbers for the same
 # RTL (part of every cache key).
 FLOW_VERSION = "1"
-# Units whose line arrays are SRAM macros (as in scripts/synth.sh).
-SRAM_UNITS = {"rt_mem_system", "rt_cache"}
+# Units whose memories are SRAM macros: the caches' line arrays (as in
+# scripts/synth.sh) and the stacks' memory (rt_ram_1r1w in rt_leaf_exit,
+# 360,448 bits in the default core, far beyond what flip-flops can hold).
+SRAM_UNITS = {"rt_mem_system", "rt_cache", "rt_leaf_exit", "rt_thread_stack"}
 # The size parameters an estimate scales, in this order of preference.
 SCALE_PARAMS = ("Threads", "Jobs", "N", "CacheMshrs")
 

@@ -1,5 +1,6 @@
 // Verilator bench of rtl/rt_leaf_exit.sv against a C++ model, per preset,
-// cycle by cycle: the round-robin choice among the threads asking to exit,
+// cycle by cycle: the round-robin choice among the threads asking to exit
+// (asked a cycle ahead: req_next_i is the next cycle's requests),
 // per-thread stacks of (node, t0, t1) entries (push_full_o, a push onto a full
 // stack dropped, the pop winning over the push and the push over the clear
 // when they name the same thread), and the exit rule of TraceRay after a leaf
@@ -57,8 +58,9 @@ bool Run(Format f, uint64_t cycles) {
   Dut& dut = sim.top();
   dut.clear_i = 0;
   dut.push_i = 0;
-  dut.req_i = 0;
+  dut.req_next_i = 0;
   sim.Reset();
+  unsigned req = 0;  // this cycle's requests, given as req_next_i in the previous cycle
   Rng rng(31 + f.m);
   std::array<std::vector<Entry>, kThreads> model;
   unsigned last = kThreads - 1;  // the arbiter's pointer after reset
@@ -77,8 +79,8 @@ bool Run(Format f, uint64_t cycles) {
     auto value = [&] { return rng.Chance(0.9) ? pool[rng.Below(pool.size())] : RandomValue(f, rng); };
     const bool clear = rng.Chance(p_clear), push = rng.Chance(p_push);
     const unsigned ci = rng.Below(kThreads), ui = rng.Below(kThreads);
-    unsigned req = 0;
-    for (unsigned t = 0; t < kThreads; ++t) req |= static_cast<unsigned>(rng.Chance(p_req)) << t;
+    unsigned req_next = 0;
+    for (unsigned t = 0; t < kThreads; ++t) req_next |= static_cast<unsigned>(rng.Chance(p_req)) << t;
     const Entry data{rng.Bits32() & kNodeMask, value(), value()};
     const bool hit = rng.Chance(p_hit);
     const bool any = rng.Chance(0.25);
@@ -90,7 +92,7 @@ bool Run(Format f, uint64_t cycles) {
     dut.push_node_i = data.node;
     dut.push_t0_i = data.t0;
     dut.push_t1_i = data.t1;
-    dut.req_i = req;
+    dut.req_next_i = req_next;
     dut.exit_hit_i = hit;
     dut.exit_any_i = any;
     dut.exit_best_t_i = best_t;
@@ -155,6 +157,7 @@ bool Run(Format f, uint64_t cycles) {
         model[t].clear();
       }
     }
+    req = req_next;
   }
   auto u = [](uint64_t x) { return static_cast<unsigned long long>(x); };
   if (by_any == 0 || by_t1 == 0 || by_empty == 0 || by_pop_t0 == 0 || held == 0 || pops == 0 || dropped == 0) {

@@ -1,6 +1,7 @@
 // Verilator bench of rtl/rt_thread_fsm.sv against a C++ model of the threads'
 // states and leaf-test counters, cycle by cycle: state_o, free_o, fetch_o, exit_o,
-// done_o and alloc_idx_o (the lowest free thread) every cycle, so every
+// done_o, alloc_idx_o (the lowest free thread) and exit_next_o (the threads in
+// EXIT after the cycle's events) every cycle, so every
 // transition is checked in the cycle after its event, and a thread in LEAF
 // must go to EXIT in the cycle after its last test is issued and its last
 // result is back, not before. Each cycle every kind of event comes with some
@@ -131,6 +132,7 @@ bool Run(const char* name, unsigned threads, unsigned count_width, uint64_t cycl
       std::printf("\n");
       return false;
     }
+    const unsigned exit_next_rtl = dut.exit_next_o;  // the threads in EXIT after this cycle's events
     sim.Tick();
 
     // The model's next state: transitions from this cycle's states and counters.
@@ -165,6 +167,13 @@ bool Run(const char* name, unsigned threads, unsigned count_width, uint64_t cycl
     if (ex >= 0) go(ex, exit_done ? kDone : kFetch);
     if (ou >= 0) go(ou, kFree);
     th = next;
+    unsigned exit_next = 0;
+    for (unsigned t = 0; t < threads; ++t) exit_next |= (th[t].state == kExit) << t;
+    if (exit_next_rtl != exit_next) {
+      std::printf("rt_thread_fsm %s: FAIL at cycle %llu: exit_next_o 0x%x, model 0x%x\n", name,
+                  static_cast<unsigned long long>(cycle), exit_next_rtl, exit_next);
+      return false;
+    }
   }
   const std::array<std::pair<State, State>, 12> must = {{{kFree, kSetup},
                                                          {kSetup, kFetch},

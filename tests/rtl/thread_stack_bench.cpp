@@ -1,6 +1,7 @@
 // Verilator bench of rtl/rt_thread_stack.sv against per-thread C++ stacks,
-// cycle by cycle: push_full_o and pop_empty_o of the named threads, top_o
-// (the top of pop_idx_i's stack, when it has one), a push onto a full stack
+// cycle by cycle: push_full_o of the pushed thread, top_empty_o and top_o
+// (the top of the stack of the thread read_idx_i named in the previous cycle,
+// when it has one, whatever that cycle did to it), a push onto a full stack
 // dropped, a pop of an empty stack ignored, and when a clear, a push and a
 // pop name the same thread in one cycle: the pop wins over the push, the push
 // over the clear. Random clears, pushes and pops with idle cycles, in regimes
@@ -30,11 +31,13 @@ bool Run(uint64_t cycles) {
   dut.clear_i = 0;
   dut.push_i = 0;
   dut.pop_i = 0;
+  dut.read_idx_i = 0;
   sim.Reset();
+  unsigned oi = 0;  // the thread read in the previous cycle: the one top_o shows and pop_i pops
   Rng rng(11);
   std::array<std::vector<uint32_t>, kThreads> model;
   double p_push = 0.5, p_pop = 0.5, p_clear = 0.05;
-  uint64_t pushes = 0, pops = 0, dropped = 0, full_seen = 0, collisions = 0;
+  uint64_t pushes = 0, pops = 0, dropped = 0, full_seen = 0, collisions = 0, read_changed = 0;
   for (uint64_t cycle = 0; cycle < cycles; ++cycle) {
     if (cycle % 200 == 0) {
       const unsigned regime = rng.Below(3);  // fill, drain, mix
@@ -43,7 +46,7 @@ bool Run(uint64_t cycles) {
       p_clear = rng.Chance(0.5) ? 0.0 : 0.05;
     }
     const bool clear = rng.Chance(p_clear), push = rng.Chance(p_push), pop = rng.Chance(p_pop);
-    const unsigned ci = rng.Below(kThreads), ui = rng.Below(kThreads), oi = rng.Below(kThreads);
+    const unsigned ci = rng.Below(kThreads), ui = rng.Below(kThreads), ri = rng.Below(kThreads);
     const uint32_t data = rng.Bits32() & kMask;
     dut.clear_i = clear;
     dut.clear_idx_i = ci;
@@ -51,15 +54,15 @@ bool Run(uint64_t cycles) {
     dut.push_idx_i = ui;
     dut.push_data_i = data;
     dut.pop_i = pop;
-    dut.pop_idx_i = oi;
+    dut.read_idx_i = ri;
     sim.Settle();
     const bool full = model[ui].size() == kDepth, empty = model[oi].empty();
-    if (static_cast<bool>(dut.push_full_o) != full || static_cast<bool>(dut.pop_empty_o) != empty ||
+    if (static_cast<bool>(dut.push_full_o) != full || static_cast<bool>(dut.top_empty_o) != empty ||
         (!empty && dut.top_o != model[oi].back())) {
       std::printf("rt_thread_stack: FAIL at cycle %llu: push thread %u (%zu entries): full %d; pop thread %u "
                   "(%zu entries): empty %d top 0x%05x, model 0x%05x\n",
                   static_cast<unsigned long long>(cycle), ui, model[ui].size(), dut.push_full_o, oi,
-                  model[oi].size(), dut.pop_empty_o, dut.top_o, empty ? 0 : model[oi].back());
+                  model[oi].size(), dut.top_empty_o, dut.top_o, empty ? 0 : model[oi].back());
       return false;
     }
     sim.Tick();
@@ -80,16 +83,19 @@ bool Run(uint64_t cycles) {
         model[t].clear();
       }
     }
+    read_changed += (pop_ok && oi == ri) || (push_ok && ui == ri) || (clear && ci == ri);
+    oi = ri;
   }
-  if (full_seen == 0 || dropped == 0 || collisions == 0) {
-    std::printf("rt_thread_stack: FAIL: the traffic never filled a stack or never collided\n");
+  if (full_seen == 0 || dropped == 0 || collisions == 0 || read_changed == 0) {
+    std::printf("rt_thread_stack: FAIL: the traffic never filled a stack, never collided or never changed a "
+                "stack in the cycle it was read\n");
     return false;
   }
   std::printf("rt_thread_stack: PASS (%llu cycles, %llu pushes, %llu pops, %llu pushes onto full stacks, "
-              "%llu same-thread collisions)\n",
+              "%llu same-thread collisions, %llu stacks changed as they were read)\n",
               static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(pushes),
               static_cast<unsigned long long>(pops), static_cast<unsigned long long>(dropped),
-              static_cast<unsigned long long>(collisions));
+              static_cast<unsigned long long>(collisions), static_cast<unsigned long long>(read_changed));
   return true;
 }
 
