@@ -18,7 +18,8 @@
 // Size mapping: the most layers D whose D(D+1)(2D+1)/6 clusters of 30
 // cylinders and 30 spheres at S = 16 (7680 triangles a cluster) fit in
 // `size` (at least one layer), then the largest S (3..64) that keeps the
-// total within it.
+// total within it. Sizes below one cluster at S = 3 (362 triangles) get a
+// single cluster of fewer hoops.
 #include <algorithm>
 #include <cmath>
 
@@ -39,9 +40,8 @@ constexpr double kClusterSpacing = 2.0;
 constexpr double kLayerSpacing = 2.6;
 
 long ClustersFor(long layers) { return layers * (layers + 1) * (2 * layers + 1) / 6; }
-long ClusterTriangles(int segments) {
-  return kHoopsPerCluster * kCorners * (2L * segments + SphereTriangleCount(segments));
-}
+long HoopTriangles(int segments) { return kCorners * (2L * segments + SphereTriangleCount(segments)); }
+long ClusterTriangles(int segments) { return kHoopsPerCluster * HoopTriangles(segments); }
 
 }  // namespace
 
@@ -49,8 +49,11 @@ Scene GenerateHoops(int size) {
   long layers = 1;
   while (ClustersFor(layers + 1) * ClusterTriangles(16) + kBackdropTriangles <= size) ++layers;
   const long clusters = ClustersFor(layers);
+  // Below one cluster at S = 3, fewer hoops (at least one).
+  int hoops = kHoopsPerCluster;
+  while (hoops > 1 && hoops * HoopTriangles(3) + kBackdropTriangles > size) --hoops;
   int segments = 3;
-  while (segments < 64 && clusters * ClusterTriangles(segments + 1) + kBackdropTriangles <= size) {
+  while (segments < 64 && clusters * hoops * HoopTriangles(segments + 1) + kBackdropTriangles <= size) {
     ++segments;
   }
 
@@ -82,7 +85,7 @@ Scene GenerateHoops(int size) {
     for (long iz = 0; iz <= layer; ++iz) {
       for (long ix = 0; ix <= layer; ++ix) {
         const glm::dvec3 centre(kClusterSpacing * (ix - 0.5 * layer), y, kClusterSpacing * (iz - 0.5 * layer));
-        for (int h = 0; h < kHoopsPerCluster; ++h) {
+        for (int h = 0; h < hoops; ++h) {
           b.SetColor(colors[h]);
           for (int c = 0; c < kCorners; ++c) {
             const glm::dvec3 p = centre + corner[h][c];
