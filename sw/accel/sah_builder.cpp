@@ -15,11 +15,11 @@
 //   N_below(s) = #{lo < s} (+ planar at s if they go below)
 //   N_above(s) = #{hi > s} (+ planar at s if they go above)
 #include <algorithm>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <cstring>
-#include <limits>
 #include <exception>
+#include <limits>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -331,7 +331,6 @@ class SahBuilder {
     out.cell = node.cell;
     out.clipped = true;
     out.count = 0;
-    out.budget = 0;
     for (uint32_t tri : clip_ids_) {
       Box box;
       if (!ClippedTriangleBox(tris_[tri], node.cell, &box)) continue;
