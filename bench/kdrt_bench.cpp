@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   // tree references each triangle ~460 times at 200k, and 800k would need
   // several GB of leaf lists: below kGearsFullGain the default list leaves
   // out gears above 200k (and says so).
-  const std::string default_scenes = "balls,rings,tetra,tree,strips,gears";
+  const std::string default_scenes = "balls,rings,tetra,tree,strips,hoops,gears";
   constexpr float kGearsFullGain = 0.05f;
   std::string scenes = default_scenes;
   std::string sizes = "1000,30000,200000,800000";
@@ -53,6 +53,8 @@ int main(int argc, char** argv) {
   std::string json_path;
   BuildOptions build;  // one build thread, as Embree's
   app.add_flag("--perfect-splits", build.perfect_splits, "Build the kd-trees with perfect splits (clipped boxes)");
+  app.add_flag("--no-auto-clip{false}", build.auto_clip,
+               "Build the kd-trees without clipping where the boxes give no good split (kdrt info --help)");
   app.add_option("--min-split-gain", build.min_split_gain,
                  "SAH: the gain below which a split counts as a bad refinement (kdrt info --help)")
       ->capture_default_str();
@@ -158,6 +160,7 @@ int main(int argc, char** argv) {
     rows.push_back({{"scene", name},
                     {"triangles", scene.triangles.size()},
                     {"perfect_splits", build.perfect_splits},
+                    {"auto_clip", build.auto_clip},
                     {"min_split_gain", build.min_split_gain},
                     {"refs_per_triangle", tree.stats.refs_per_triangle},
                     {"max_leaf_prims", tree.stats.max_leaf_prims},

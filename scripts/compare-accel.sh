@@ -11,7 +11,7 @@ set -euo pipefail
 kdrt=${1:-build/bin/kdrt}
 out=${2:-compare-accel}
 sizes=${3:-10000 100000 1000000}
-generators="room balls rings tetra tree gears"
+generators="room balls rings tetra tree gears hoops"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 : > "$tmp/tables.md"

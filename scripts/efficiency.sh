@@ -13,7 +13,7 @@ res=${2:-128x128}
 lats=${3:-20 200}
 shift $(($# < 3 ? $# : 3))
 . "$(dirname "${BASH_SOURCE[0]}")/scene-args.sh"
-read_scenes "gen:room:10000 gen:balls:10000 gen:rings:10000 gen:tetra:10000 gen:tree:10000 gen:gears:10000" "$@"
+read_scenes "gen:room:10000 gen:balls:10000 gen:rings:10000 gen:tetra:10000 gen:tree:10000 gen:gears:10000 gen:hoops:10000" "$@"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "| scene | latency | cycles/ray | bound | efficiency | window bound (efficiency) | stall mem / stack / backpressure | node / list / tri hit | max misses out | waits node / list / tri (in flight, no MSHR) | threads fetch / wait node / trav / leaf / exit / other |"

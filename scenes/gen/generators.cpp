@@ -26,6 +26,8 @@ const GeneratorEntry kGenerators[] = {
      gen::GenerateGears},
     {"strips", "pentagonal rings of long thin cylinder strips with spheres at the corners (SPD rings), over a floor",
      gen::GenerateStrips},
+    {"hoops", "pyramid of clusters of six interlinked pentagonal hoops: NFF cylinders 50x longer than thick, one band of full-length slivers, with corner spheres (SPD rings)",
+     gen::GenerateHoops},
 };
 
 const GeneratorEntry& Find(const std::string& name) {

@@ -15,7 +15,7 @@ namespace kdrt {
 
 inline constexpr int kMaxGeneratorSize = 10000000;
 
-// "room", "balls", "rings", "tetra", "tree", "gears", "strips".
+// "room", "balls", "rings", "tetra", "tree", "gears", "strips", "hoops".
 std::vector<std::string> GeneratorNames();
 
 // A one-line description of the named generator; InputError if unknown.

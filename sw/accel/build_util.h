@@ -135,8 +135,8 @@ class TreeWriter {
 bool ClippedTriangleBox(const Triangle& t, const Box& cell, Box* out);
 
 // The builders. Each appends exactly one subtree (the whole tree) to writer.
-// The SAH build reads options' costs, leaf size, perfect splits and minimum
-// split gain (the depth limit is input.max_depth) and runs on
+// The SAH build reads options' costs, leaf size, perfect splits, automatic
+// clipping and minimum split gain (the depth limit is input.max_depth) and runs on
 // options.threads threads (0: all cores); the tree is the serial build's,
 // node for node.
 void BuildSahTree(const BuildInput& input, const BuildOptions& options, TreeWriter* writer);

@@ -77,13 +77,23 @@ bool ClippedTriangleBox(const Triangle& t, const Box& cell, Box* out) {
   }
   Polygon* cur = &a;
   Polygon* next = &b;
+  // A plane all three vertices lie inside of leaves the polygon as it is
+  // (its points are their convex combinations, inside up to rounding far
+  // below tol), so it is skipped: most triangles of a node lie inside most
+  // of its faces.
   for (int axis = 0; axis < 3; ++axis) {
-    ClipAgainstPlane(*cur, axis, cell.lo[axis], -1.0, tol[axis], next);
-    std::swap(cur, next);
-    if (cur->n == 0) return false;
-    ClipAgainstPlane(*cur, axis, cell.hi[axis], 1.0, tol[axis], next);
-    std::swap(cur, next);
-    if (cur->n == 0) return false;
+    const float tri_lo = std::min({t.v0[axis], t.v1[axis], t.v2[axis]});
+    const float tri_hi = std::max({t.v0[axis], t.v1[axis], t.v2[axis]});
+    if (tri_lo < cell.lo[axis]) {
+      ClipAgainstPlane(*cur, axis, cell.lo[axis], -1.0, tol[axis], next);
+      std::swap(cur, next);
+      if (cur->n == 0) return false;
+    }
+    if (tri_hi > cell.hi[axis]) {
+      ClipAgainstPlane(*cur, axis, cell.hi[axis], 1.0, tol[axis], next);
+      std::swap(cur, next);
+      if (cur->n == 0) return false;
+    }
   }
   for (int axis = 0; axis < 3; ++axis) {
     double lo = cur->p[0][axis];

@@ -36,6 +36,11 @@ struct BuildOptions {
   int max_depth = -1;        // -1: round(8 + 1.3 log2 N)
   int max_leaf_prims = 1;    // a node with this many or fewer becomes a leaf
   bool perfect_splits = false;  // clip triangles to the node box (SAH only)
+  // SAH only: a node of more than kLargeLeafPrims triangles whose boxes give
+  // no good split is decided again on its triangles clipped to its cell,
+  // and its subtree built with perfect splits (docs/kdtree.md, "Clipping
+  // where the boxes fail").
+  bool auto_clip = true;
   // SAH: a split that does not cost less than (1 - G) x the leaf counts
   // towards the bad-refinement limit (0: pbrt-v3's rule, any split cheaper
   // than the leaf is good; docs/kdtree.md, "Minimum split gain").
@@ -61,9 +66,10 @@ enum class LeafCause : uint8_t {
   kNoGain,    // SAH: no split cheaper than the leaf, kMaxBadRefines times on the path;
               // median/midpoint: the split would put every triangle on both sides
   kHopeless,  // SAH: the best split costs over 4x the leaf in a node of < 16 triangles
+  kBudget,    // SAH: the split would exceed the reference budget of a clipped subtree
 };
-inline constexpr int kLeafCauseCount = 5;
-const char* LeafCauseName(LeafCause c);  // "few", "depth", "no_plane", "no_gain", "hopeless"
+inline constexpr int kLeafCauseCount = 6;
+const char* LeafCauseName(LeafCause c);  // "few", "depth", "no_plane", "no_gain", "hopeless", "budget"
 const char* LeafCauseText(LeafCause c);  // "few triangles", "depth limit", ... (for people)
 
 // A leaf of more than this many triangles counts as large in LeafCauses.
@@ -97,6 +103,10 @@ struct LeafCauses {
   }
 };
 
+// Leaf sizes in powers of two: bucket 0 counts empty leaves, bucket b > 0
+// leaves of 2^(b-1) .. 2^b - 1 triangles, the last bucket every larger leaf.
+inline constexpr int kLeafSizeBuckets = 12;
+
 struct TreeStats {
   uint32_t nodes = 0;
   uint32_t inner_nodes = 0;
@@ -113,6 +123,7 @@ struct TreeStats {
   uint32_t degenerate_triangles = 0;  // left out of the tree
   double build_seconds = 0;
   LeafCauses leaf_causes;  // recorded by the builder, not recounted from the nodes
+  uint64_t leaf_sizes[kLeafSizeBuckets] = {};  // leaves per size bucket (kLeafSizeBuckets)
 };
 
 struct KdTree {

@@ -48,6 +48,9 @@ TreeStats ComputeTreeStats(const KdTree& tree, size_t triangles, const BuildOpti
       } else {
         ++non_empty;
       }
+      int bucket = 0;
+      while (bucket + 1 < kLeafSizeBuckets && (count >> bucket) != 0) ++bucket;
+      ++st.leaf_sizes[bucket];
       st.max_leaf_prims = std::max(st.max_leaf_prims, count);
       st.references += count;
       st.sah_cost += static_cast<double>(options.isect_cost) * count * ratio(item.cell);
@@ -82,6 +85,7 @@ const char* LeafCauseName(LeafCause c) {
     case LeafCause::kNoPlane: return "no_plane";
     case LeafCause::kNoGain: return "no_gain";
     case LeafCause::kHopeless: return "hopeless";
+    case LeafCause::kBudget: return "budget";
   }
   return "unknown";
 }
@@ -93,6 +97,7 @@ const char* LeafCauseText(LeafCause c) {
     case LeafCause::kNoPlane: return "no plane";
     case LeafCause::kNoGain: return "no cheaper split";
     case LeafCause::kHopeless: return "hopeless split";
+    case LeafCause::kBudget: return "reference budget";
   }
   return "unknown";
 }

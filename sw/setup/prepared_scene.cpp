@@ -99,6 +99,30 @@ nlohmann::json LeafCausesJson(const LeafCauses& c) {
   return j;
 }
 
+// "0", "1", "2-3", ..., "1024+": the leaf size buckets of TreeStats.
+std::string LeafSizeBucketName(int b) {
+  if (b == 0) return "0";
+  if (b == 1) return "1";
+  const uint64_t lo = uint64_t{1} << (b - 1);
+  if (b + 1 == kLeafSizeBuckets) return std::to_string(lo) + "+";
+  return std::to_string(lo) + "-" + std::to_string(2 * lo - 1);
+}
+
+nlohmann::json LeafSizesJson(const TreeStats& s) {
+  nlohmann::json j = nlohmann::json::object();
+  for (int b = 0; b < kLeafSizeBuckets; ++b) j[LeafSizeBucketName(b)] = s.leaf_sizes[b];
+  return j;
+}
+
+void PrintLeafSizes(const TreeStats& s) {
+  std::string line;
+  for (int b = 0; b < kLeafSizeBuckets; ++b) {
+    if (s.leaf_sizes[b] == 0) continue;
+    line += (line.empty() ? "" : ", ") + LeafSizeBucketName(b) + ": " + std::to_string(s.leaf_sizes[b]);
+  }
+  std::printf("leaf sizes     %s\n", line.c_str());
+}
+
 void PrintLeafCauses(const LeafCauses& c) {
   if (!c.recorded) return;
   std::string all, large;
@@ -130,6 +154,7 @@ nlohmann::json BuildOptionsJson(const BuildOptions& o, const TreeStats& s) {
           {"max_depth", s.depth_limit},
           {"max_leaf_prims", o.max_leaf_prims},
           {"perfect_splits", o.perfect_splits},
+          {"auto_clip", o.auto_clip},
           {"min_split_gain", o.min_split_gain}};
 }
 
@@ -147,7 +172,8 @@ nlohmann::json TreeStatsJson(const TreeStats& s) {
           {"sah_cost", s.sah_cost},
           {"degenerate_triangles", s.degenerate_triangles},
           {"build_seconds", s.build_seconds},
-          {"leaf_causes", LeafCausesJson(s.leaf_causes)}};
+          {"leaf_causes", LeafCausesJson(s.leaf_causes)},
+          {"leaf_sizes", LeafSizesJson(s)}};
 }
 
 void PrintTreeStats(const PreparedScene& p) {
@@ -173,6 +199,7 @@ void PrintTreeStats(const PreparedScene& p) {
               s.empty_leaves);
   std::printf("depth          max %u, avg leaf %.2f\n", s.max_depth, s.avg_leaf_depth);
   std::printf("leaf triangles max %u, avg %.2f (non-empty leaves)\n", s.max_leaf_prims, s.avg_leaf_prims);
+  PrintLeafSizes(s);
   PrintLeafCauses(s.leaf_causes);
   std::printf("references     %llu (%.2f per triangle)\n", static_cast<unsigned long long>(s.references),
               s.refs_per_triangle);

@@ -31,7 +31,7 @@ int Run(const GenArgs& args) {
 
 Runner AddGenCommand(CLI::App& app) {
   auto args = std::make_shared<GenArgs>();
-  CLI::App* cmd = app.add_subcommand("gen", "Write a procedural scene (room, balls, rings, tetra, tree, gears) as NFF");
+  CLI::App* cmd = app.add_subcommand("gen", "Write a procedural scene (room, balls, rings, tetra, tree, gears, strips, hoops) as NFF");
   cmd->add_option("name", args->name, "Generator name (omit to list them)");
   cmd->add_option("--size", args->size, "Approximate number of triangles")->capture_default_str();
   cmd->add_option("-o,--output", args->out, "NFF file to write (default: NAME.nff)");

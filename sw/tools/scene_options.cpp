@@ -49,6 +49,9 @@ void AddSceneOptions(CLI::App& cmd, SceneSpec& spec, bool structures) {
   cmd.add_option("--trav-cost", b.traversal_cost, "SAH cost of a traversal step")->capture_default_str();
   cmd.add_option("--empty-bonus", b.empty_bonus, "SAH bonus for empty children")->capture_default_str();
   cmd.add_flag("--perfect-splits", b.perfect_splits, "Clip triangles to the node box (SAH only)");
+  cmd.add_flag("--no-auto-clip{false}", b.auto_clip,
+               "SAH: never clip; by default a node of more than 16 triangles whose boxes give no good split is "
+               "decided on its triangles clipped to its cell, its subtree with perfect splits (docs/kdtree.md)");
   cmd.add_option("--min-split-gain", b.min_split_gain,
                  "SAH: a split that does not cost less than (1 - G) x the leaf counts as a bad refinement (3 on a "
                  "path make a leaf); 0: any split cheaper than the leaf is good, pbrt-v3's rule (docs/kdtree.md)")

@@ -37,7 +37,7 @@ void ExpectCausesAddUp(const KdTree& t, const std::string& what) {
 }
 
 TEST(LeafCauses, AddUpToTheTreeOnEveryGeneratorAndBuilder) {
-  for (const char* g : {"room", "balls", "rings", "tetra", "tree", "gears"}) {
+  for (const char* g : {"room", "balls", "rings", "tetra", "tree", "gears", "strips", "hoops"}) {
     const Scene scene = GenerateScene(g, 3000);
     for (SplitMethod m : {SplitMethod::kSah, SplitMethod::kMedian, SplitMethod::kMidpoint}) {
       BuildOptions o;

@@ -1,7 +1,7 @@
 // The parallel SAH build (BuildOptions::threads) gives the serial build's
 // tree: the same nodes and leaf lists, entry for entry, on every generator,
-// with and without perfect splits and without the default minimum split gain, for several thread counts, including
-// more threads than subtrees.
+// with and without perfect splits, without automatic clipping and without the default minimum split gain, for
+// several thread counts, including more threads than subtrees.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -25,10 +25,11 @@ class ParallelBuild : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ParallelBuild, SameTreeAsTheSerialBuild) {
   const Scene scene = GenerateScene(GetParam(), 30000);
-  for (int variant = 0; variant < 3; ++variant) {
+  for (int variant = 0; variant < 4; ++variant) {
     const bool perfect = variant == 1;
     BuildOptions serial;
     serial.perfect_splits = perfect;
+    serial.auto_clip = variant != 3;
     serial.min_split_gain = variant == 2 ? 0.0f : kDefaultMinSplitGain;
     serial.threads = 1;
     const KdTree expected = BuildKdTree(scene, serial);
@@ -37,7 +38,7 @@ TEST_P(ParallelBuild, SameTreeAsTheSerialBuild) {
       o.threads = threads;
       const KdTree got = BuildKdTree(scene, o);
       const std::string what = std::string(GetParam()) + (perfect ? " perfect" : "") +
-                               (variant == 2 ? " min gain 0" : "") + ", " +
+                               (variant == 2 ? " min gain 0" : "") + (variant == 3 ? " no auto clip" : "") + ", " +
                                std::to_string(threads) + " threads";
       ASSERT_EQ(got.nodes.size(), expected.nodes.size()) << what;
       EXPECT_EQ(FirstDifference(got, expected), expected.nodes.size()) << what << ": first differing node";
@@ -48,7 +49,7 @@ TEST_P(ParallelBuild, SameTreeAsTheSerialBuild) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Generators, ParallelBuild,
-                         ::testing::Values("room", "balls", "rings", "tetra", "tree", "gears"));
+                         ::testing::Values("room", "balls", "rings", "tetra", "tree", "gears", "strips", "hoops"));
 
 TEST(ParallelBuild, RefusesANegativeThreadCount) {
   BuildOptions o;

@@ -177,7 +177,7 @@ TEST_F(BadInputCli, GeneratorSpecMustBeWhole) {
               "gen:room:10:extra: expected gen:NAME or gen:NAME:SIZE (one size, no more fields)", 0);
   ExpectError(Render("gen:room:0"), "gen:room:0: size 0 is outside 1..10000000", 0);
   ExpectError(Render("gen:nope:10"), "gen:nope:10: unknown scene generator 'nope' (known: room, balls, rings, "
-                                     "tetra, tree, gears, strips)",
+                                     "tetra, tree, gears, strips, hoops)",
               0);
 }
 

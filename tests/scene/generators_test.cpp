@@ -19,7 +19,7 @@ bool Finite(const glm::vec3& v) {
 
 TEST(Generators, NamesAndDescriptions) {
   std::vector<std::string> names = GeneratorNames();
-  EXPECT_EQ(names, (std::vector<std::string>{"room", "balls", "rings", "tetra", "tree", "gears", "strips"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"room", "balls", "rings", "tetra", "tree", "gears", "strips", "hoops"}));
   for (const std::string& n : names) EXPECT_FALSE(GeneratorDescription(n).empty());
   EXPECT_THROW(GeneratorDescription("teapot"), InputError);
   EXPECT_THROW(GenerateScene("teapot", 100), InputError);

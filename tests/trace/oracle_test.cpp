@@ -66,7 +66,8 @@ TEST_P(EmbreeOracle, PrimaryRaysAgree) {
 INSTANTIATE_TEST_SUITE_P(Generators, EmbreeOracle,
                          ::testing::Values(OracleCase{"room", 2000}, OracleCase{"balls", 5000},
                                            OracleCase{"rings", 5000}, OracleCase{"tetra", 4000},
-                                           OracleCase{"tree", 5000}, OracleCase{"gears", 5000, 10}),
+                                           OracleCase{"tree", 5000}, OracleCase{"gears", 5000, 10},
+                                           OracleCase{"strips", 5000}, OracleCase{"hoops", 5000}),
                          [](const auto& info) { return std::string(info.param.generator); });
 
 }  // namespace

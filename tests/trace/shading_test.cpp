@@ -45,8 +45,14 @@ std::vector<Ray> RaysInsideTheBox(const Scene& scene, int count) {
   return rays;
 }
 
+// On gears' tree without the automatic clipping: its large leaves of
+// overlapping slivers are where an any-hit query stops on a triangle that
+// is not the closest (with the clipping's small leaves some formats find
+// the closest on all 2000 rays).
 TEST(AnyHit, AgreesWithClosestHitOnOcclusion) {
-  const Prepared p(GenerateScene("gears", 3000));
+  BuildOptions boxes;
+  boxes.auto_clip = false;
+  const Prepared p(GenerateScene("gears", 3000), boxes);
   const std::vector<Ray> rays = RaysInsideTheBox(p.scene, 2000);
   for (const fp::Format format : fp::Presets()) {
     SCOPED_TRACE(format.Name());
