@@ -10,7 +10,7 @@
 // KDRT_LONG=1 runs 4000; KDRT_FUZZ_CASES=N runs the first N of the same
 // sequence and KDRT_FUZZ_CASES=FIRST-END the cases FIRST..END-1 of it (a
 // sanitizer build, whose runs are several times slower, runs a part of the
-// long sequence this way).
+// long sequence this way; KDRT_FUZZ_BIN=PATH runs that kdrt binary).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -259,6 +259,9 @@ TEST_F(MutatedInputs, EveryCaseRendersOrFailsCleanly) {
     first = range ? a : 0;
     cases = b;
   }
+  // KDRT_FUZZ_BIN: the corpus through another build of the tool (a
+  // sanitizer build's kdrt, with this binary built as usual).
+  const std::string kdrt = std::getenv("KDRT_FUZZ_BIN") ? std::getenv("KDRT_FUZZ_BIN") : KDRT_BIN;
   const std::vector<Seed> seeds = Seeds();
   const std::string scene_for_rays = (fs::path(KDRT_SOURCE_DIR) / "tests/fuzz/seeds/plain.nff").string();
   Rng rng(20261203);
@@ -290,7 +293,7 @@ TEST_F(MutatedInputs, EveryCaseRendersOrFailsCleanly) {
       outputs.push_back(out_png);
     }
     const testing::RunResult r =
-        testing::RunCommand("timeout -s KILL 60 " + std::string(KDRT_BIN) + " " + cmd);
+        testing::RunCommand("timeout -s KILL 60 " + kdrt + " " + cmd);
     const std::string label = "case " + std::to_string(c) + " (" + seed.name + ": " + what + "): kdrt " + cmd;
     auto fail = [&](const std::string& why) {
       ++failures;
