@@ -78,7 +78,7 @@ test-asan: deps
 	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target kdrt $(ASAN_TESTS)
 	@set -e; for t in $(ASAN_TESTS); do \
 	  echo "test-asan: $$t"; \
-	  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:abort_on_error=1 \
 	    $(if $(ASAN_FUZZ_CASES),KDRT_FUZZ_CASES=$(ASAN_FUZZ_CASES)) $(ASAN_BUILD)/tests/$$t; \
 	done
 
