@@ -9,8 +9,8 @@
 // never a raw byte of the file on the terminal. 96 cases by default;
 // KDRT_LONG=1 runs 4000; KDRT_FUZZ_CASES=N runs the first N of the same
 // sequence and KDRT_FUZZ_CASES=FIRST-END the cases FIRST..END-1 of it (a
-// sanitizer build, whose runs are several times slower, runs a part of the
-// long sequence this way; KDRT_FUZZ_BIN=PATH runs that kdrt binary).
+// part of the long sequence, e.g. under the sanitizers); KDRT_FUZZ_BIN=PATH
+// runs that kdrt binary.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
