@@ -3,9 +3,11 @@
 #                   compare the hit buffers; then a shaded frame (primary and
 #                   shadow rays) on both, compared byte for byte (installs what is missing)
 #   make test       build and run every test (installs what is missing)
-#   make test-long  the long variants (more random vectors, larger images)
+#   make test-long  the long variants (more random vectors, larger images),
+#                   then make test-asan
 #   make test-asan  the software tests and the mutated-input corpus built with
-#                   AddressSanitizer and UBSan in build-asan/ (not in make test)
+#                   AddressSanitizer and UBSan in build-asan/ (not in make test:
+#                   a second build of the software, beyond the CI's time)
 #   make lint       verilator --lint-only -Wall on the RTL
 #   make synth      synthesis: cells, logic depth, OSU 0.18 um area and critical
 #                   path per unit and format; the default core's clock and area
@@ -66,17 +68,24 @@ test: configure
 
 test-long: build
 	KDRT_LONG=1 ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+	@$(MAKE) --no-print-directory test-asan
 
-# The software test binaries (no RTL model) with ASan and UBSan; a finding
-# aborts its binary, so any non-zero exit fails the target.
+# The software test binaries with ASan and UBSan; a finding aborts its binary
+# (or the kdrt run a test makes, which the test reports), so any non-zero exit
+# fails the target. Left out: sim_tests and trade_tests, which build and run
+# Verilated core models, and the RTL unit benches (Verilator's code).
+# ASAN_FUZZ_CASES: how many cases of the mutated-input sequence (N or
+# FIRST-END; the 96 of make test when empty).
 ASAN_BUILD ?= build-asan
 ASAN_TESTS ?= scene_tests fuzz_tests accel_tests fp_tests trace_tests structures_tests
+ASAN_FUZZ_CASES ?=
 test-asan: deps
 	@test -f $(ASAN_BUILD)/build.ninja || cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DKDRT_SANITIZE=ON
 	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target kdrt $(ASAN_TESTS)
 	@set -e; for t in $(ASAN_TESTS); do \
 	  echo "test-asan: $$t"; \
-	  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 $(ASAN_BUILD)/tests/$$t; \
+	  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:abort_on_error=1 \
+	    $(if $(ASAN_FUZZ_CASES),KDRT_FUZZ_CASES=$(ASAN_FUZZ_CASES)) $(ASAN_BUILD)/tests/$$t; \
 	done
 
 lint: deps

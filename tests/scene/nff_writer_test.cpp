@@ -41,7 +41,9 @@ void ExpectBitIdentical(const Scene& a, const Scene& b) {
   for (size_t i = 0; i < a.lights.size(); ++i) {
     EXPECT_TRUE(SameBits(a.lights[i].position, b.lights[i].position)) << "light " << i;
     EXPECT_EQ(a.lights[i].has_color, b.lights[i].has_color) << "light " << i;
-    if (a.lights[i].has_color) EXPECT_TRUE(SameBits(a.lights[i].color, b.lights[i].color)) << "light " << i;
+    if (a.lights[i].has_color) {
+      EXPECT_TRUE(SameBits(a.lights[i].color, b.lights[i].color)) << "light " << i;
+    }
   }
   EXPECT_TRUE(SameBits(a.background, b.background));
   ASSERT_EQ(a.camera.has_value(), b.camera.has_value());
