@@ -106,8 +106,8 @@ PY
 # so the same hits and reference work, and in Z-order tree's cache lines
 # serve more rays in flight (fewer bytes per ray).
 cat > "$work/order.yaml" << 'SPEC'
-scenes: [gen:tree:2000]
-res: 32x32
+scenes: [gen:tree:10000]
+res: 48x48
 model: fast
 params:
   ray_order: [linear, morton]
