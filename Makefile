@@ -95,6 +95,7 @@ synth: deps
 	@bash scripts/synth.sh
 
 bench: build
+	@cmake --build $(BUILD) -j $(JOBS) --target kdrt_bench
 	$(BUILD)/bin/kdrt_bench
 
 clean:

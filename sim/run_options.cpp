@@ -5,6 +5,8 @@
 #include <exception>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "common/error.h"
 #include "sim/memory_model.h"
 #include "sim/ray_queue.h"

@@ -8,9 +8,13 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "sim/core_params.h"
+
+// Declared only: CLI11 is a heavy header, and most users of these options
+// (the model runner, kdrt trade, the tests) never register them.
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace kdrt::sim {
 

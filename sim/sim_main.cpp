@@ -10,6 +10,8 @@
 #include <fstream>
 #include <iterator>
 
+#include <CLI/CLI.hpp>
+
 #include "common/error.h"
 #include "sim/core_harness.h"
 #include "sim/run_options.h"

@@ -1,7 +1,5 @@
 #include "trace/images.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/error.h"
+#include "trace/image_io_module.h"
 
 namespace kdrt {
 
@@ -33,79 +32,45 @@ std::vector<float> ShadeEyeLight(const Scene& scene, const std::vector<Ray>& ray
 }
 
 void WriteRgbImage(const std::string& path, int width, int height, const std::vector<float>& rgb) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw InputError(path, 0, "cannot write image: " + OIIO::geterror());
-  std::vector<unsigned char> pixels(rgb.size());
+  std::vector<uint8_t> pixels(rgb.size());
   for (size_t i = 0; i < rgb.size(); ++i) {
-    pixels[i] = static_cast<unsigned char>(std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 255.0f));
+    pixels[i] = static_cast<uint8_t>(std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 255.0f));
   }
-  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("DateTime", "1970:01:01 00:00:00");  // deterministic bytes
-  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close()) {
-    throw InputError(path, 0, "cannot write image: " + out->geterror());
-  }
+  const std::string error = image_io::Get().write_rgb8(path, width, height, pixels);
+  if (!error.empty()) throw InputError(path, 0, error);
 }
 
-namespace {
-// Per-pixel layout handed to OpenImageIO; channel names in this order.
-struct HitPixel {
-  float t;
-  uint32_t prim;
-  float u, v;
-};
-}  // namespace
-
 void WriteHitBuffer(const std::string& path, int width, int height, const std::vector<Hit>& hits) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw InputError(path, 0, "cannot write hit buffer: " + OIIO::geterror());
-  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"t", "prim", "u", "v"};
-  spec.channelformats = {OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::UINT32, OIIO::TypeDesc::FLOAT,
-                         OIIO::TypeDesc::FLOAT};
-  spec.attribute("compression", "zip");
-  // OpenImageIO stamps the write time unless told otherwise; a fixed value
-  // keeps hit buffers byte-identical between runs (and between render and sim).
-  spec.attribute("DateTime", "1970:01:01 00:00:00");
-  std::vector<HitPixel> pixels(hits.size());
-  for (size_t i = 0; i < hits.size(); ++i) pixels[i] = {hits[i].t, hits[i].prim, hits[i].u, hits[i].v};
-  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UNKNOWN, pixels.data(), sizeof(HitPixel)) ||
-      !out->close()) {
-    throw InputError(path, 0, "cannot write hit buffer: " + out->geterror());
+  std::vector<uint32_t> pixels(4 * hits.size());
+  for (size_t i = 0; i < hits.size(); ++i) {
+    std::memcpy(&pixels[4 * i + 0], &hits[i].t, 4);
+    pixels[4 * i + 1] = hits[i].prim;
+    std::memcpy(&pixels[4 * i + 2], &hits[i].u, 4);
+    std::memcpy(&pixels[4 * i + 3], &hits[i].v, 4);
   }
+  const std::string error = image_io::Get().write_hits(path, width, height, pixels);
+  if (!error.empty()) throw InputError(path, 0, error);
 }
 
 std::vector<Hit> ReadHitBuffer(const std::string& path, int* width, int* height) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError(path, 0, "cannot read hit buffer: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  int ct = -1, cp = -1, cu = -1, cv = -1;
-  for (int c = 0; c < spec.nchannels; ++c) {
-    const std::string& n = spec.channelnames[c];
-    if (n == "t") ct = c;
-    if (n == "prim") cp = c;
-    if (n == "u") cu = c;
-    if (n == "v") cv = c;
+  std::vector<uint32_t> pixels;
+  const std::string error = image_io::Get().read_hits(path, &pixels, width, height);
+  if (!error.empty()) throw InputError(path, 0, error);
+  std::vector<Hit> hits(pixels.size() / 4);
+  for (size_t i = 0; i < hits.size(); ++i) {
+    std::memcpy(&hits[i].t, &pixels[4 * i + 0], 4);
+    hits[i].prim = pixels[4 * i + 1];
+    std::memcpy(&hits[i].u, &pixels[4 * i + 2], 4);
+    std::memcpy(&hits[i].v, &pixels[4 * i + 3], 4);
   }
-  if (ct < 0 || cp < 0 || cu < 0 || cv < 0) throw InputError(path, 0, "not a kdrt hit buffer (needs t, prim, u, v)");
-  const size_t n = static_cast<size_t>(spec.width) * spec.height;
-  // Read every channel in its native type and pick the fields out.
-  std::vector<Hit> hits(n);
-  std::vector<float> fl(n);
-  std::vector<uint32_t> ui(n);
-  auto read_channel = [&](int c, OIIO::TypeDesc type, void* dst) {
-    if (!in->read_image(0, 0, c, c + 1, type, dst)) throw InputError(path, 0, "cannot read hit buffer: " + in->geterror());
-  };
-  read_channel(ct, OIIO::TypeDesc::FLOAT, fl.data());
-  for (size_t i = 0; i < n; ++i) hits[i].t = fl[i];
-  read_channel(cu, OIIO::TypeDesc::FLOAT, fl.data());
-  for (size_t i = 0; i < n; ++i) hits[i].u = fl[i];
-  read_channel(cv, OIIO::TypeDesc::FLOAT, fl.data());
-  for (size_t i = 0; i < n; ++i) hits[i].v = fl[i];
-  read_channel(cp, OIIO::TypeDesc::UINT32, ui.data());
-  for (size_t i = 0; i < n; ++i) hits[i].prim = ui[i];
-  *width = spec.width;
-  *height = spec.height;
   return hits;
+}
+
+std::vector<uint8_t> ReadImage8(const std::string& path, int* width, int* height, int* channels) {
+  std::vector<uint8_t> pixels;
+  const std::string error = image_io::Get().read_8bit(path, &pixels, width, height, channels);
+  if (!error.empty()) throw InputError(path, 0, error);
+  return pixels;
 }
 
 }  // namespace kdrt

@@ -1,6 +1,7 @@
 // Images and hit buffers written by `kdrt render` and `kdrt sim`.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,5 +23,8 @@ void WriteRgbImage(const std::string& path, int width, int height, const std::ve
 // 0xFFFFFFFF on a miss), u, v (float32).
 void WriteHitBuffer(const std::string& path, int width, int height, const std::vector<Hit>& hits);
 std::vector<Hit> ReadHitBuffer(const std::string& path, int* width, int* height);
+
+// Any image OpenImageIO reads, every channel as 8 bits, interleaved.
+std::vector<uint8_t> ReadImage8(const std::string& path, int* width, int* height, int* channels);
 
 }  // namespace kdrt

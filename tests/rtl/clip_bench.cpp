@@ -268,7 +268,7 @@ bool RunPreset(Format f, Format trav, uint64_t count) {
 int main(int argc, char** argv) {
   using namespace kdrt::rtlbench;
   Verilated::commandArgs(argc, argv);
-  const uint64_t count = LongRun() ? 10000000 : 1000000;
+  const uint64_t count = LongRun() ? 10000000 : 300000;
   using kdrt::fp::kBf16;
   using kdrt::fp::kFp16;
   using kdrt::fp::kFp24;

@@ -4,7 +4,7 @@
 // triangle id); the first mismatch stops the run with the ray, the triangle
 // and both results. The stream has random input bubbles and random output
 // backpressure. Cases: random (ray, triangle) pairs, most aimed at the
-// triangle (1e6 per preset, 1e7 with KDRT_LONG=1), directed corner cases,
+// triangle (3e5 per preset, 1e7 with KDRT_LONG=1), directed corner cases,
 // and the watertightness rays of two closed meshes against every triangle,
 // whose misses are tabulated for the model and the RTL.
 #include <algorithm>
@@ -513,7 +513,7 @@ int main(int argc, char** argv) {
   using namespace kdrt::rtlbench;
   using namespace kdrt::fp;
   Verilated::commandArgs(argc, argv);
-  uint64_t count = LongRun() ? 10000000ull : 1000000ull;
+  uint64_t count = LongRun() ? 10000000ull : 300000ull;
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) == "--count") count = std::strtoull(argv[i + 1], nullptr, 10);
   }

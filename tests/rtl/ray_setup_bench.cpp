@@ -7,7 +7,7 @@
 // ray), so every ray has its own: origins from 0 to 1e30, scales over the
 // whole range -160..160. Cases: every direction whose components come from a
 // set of ties, signed zeros and special values, in four frames; then random
-// rays (1e6 per preset, 1e7 with KDRT_LONG=1), with direction components
+// rays (3e5 per preset, 1e7 with KDRT_LONG=1), with direction components
 // of any magnitude (subnormal to fp32's largest, mixed within one ray).
 // With a traversal wider than the test (TravE, TravM; the configurations
 // name:E:M:TE:TM in tests/rtl/CMakeLists.txt) out_inv_o is the model's
@@ -336,7 +336,7 @@ int main(int argc, char** argv) {
   using namespace kdrt::rtlbench;
   using namespace kdrt::fp;
   Verilated::commandArgs(argc, argv);
-  uint64_t count = LongRun() ? 10000000ull : 1000000ull;
+  uint64_t count = LongRun() ? 10000000ull : 300000ull;
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) == "--count") count = std::strtoull(argv[i + 1], nullptr, 10);
   }

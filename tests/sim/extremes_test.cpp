@@ -5,6 +5,7 @@
 // 1e-30 and 1e30 no longer under- or overflow the watertight test's products.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -39,10 +40,18 @@ class ExtremesSim : public ::testing::TestWithParam<const char*> {};
 TEST_P(ExtremesSim, SimMatchesRenderAndNoHolesWithoutAWarning) {
   const std::string format = GetParam();
   // The small core for the presets other than fp32 (tests/common/test_cores.h):
-  // its pinned widths fit every case, so one model serves them all.
-  const nlohmann::json j =
-      RunExtremes("--reduced --sim --formats " + format + testing::CoreFor(format), "_sim_" + format);
-  ASSERT_GE(j["cases"].size(), 20u);
+  // its pinned widths fit every case, so one model serves them all. The case
+  // with the most rays (12,480 at a dense sphere) takes most of a run's time
+  // on the default core and in bf16, whose leaves there are largest: it runs
+  // in fp24 and fp16, and in every preset with KDRT_LONG=1.
+  const bool all_cases = testing::LongRun() || format == "fp24" || format == "fp16";
+  const nlohmann::json j = RunExtremes("--reduced --sim --formats " + format + testing::CoreFor(format) +
+                                           (all_cases ? "" : " --cases '^(?!dense sphere)'"),
+                                       "_sim_" + format);
+  ASSERT_GE(j["cases"].size(), all_cases ? 20u : 19u);
+  EXPECT_EQ(std::count_if(j["cases"].begin(), j["cases"].end(),
+                          [](const nlohmann::json& c) { return c["case"] == "dense sphere, far rays"; }),
+            all_cases ? 1 : 0);
   for (const nlohmann::json& c : j["cases"]) {
     const std::string name = c["case"];
     EXPECT_GT(c["rays"].get<int>(), 0) << name;
@@ -54,7 +63,9 @@ TEST_P(ExtremesSim, SimMatchesRenderAndNoHolesWithoutAWarning) {
         EXPECT_EQ(cell["holes"].get<int>(), 0) << name << " " << f;
       }
     }
-    if (format == "fp32") EXPECT_EQ(c["formats"]["fp32"]["holes"].get<int>(), 0) << name;
+    if (format == "fp32") {
+      EXPECT_EQ(c["formats"]["fp32"]["holes"].get<int>(), 0) << name;
+    }
   }
 }
 

@@ -783,7 +783,8 @@ TEST_F(SimCli, NarrowerImageRunsInTheRtl) {
 // The SystemC top ticks the same core and memory model: same hits, same cycles.
 TEST_F(SimCli, SystemCLoopGivesTheSameCyclesAndHits) {
   const std::string common = "gen:tetra:300 --res 12x12 --format bf16 -o " + Path("x.png") + CoreFor("bf16");
-  ASSERT_EQ(RunKdrt("sim " + common + " -q --hits " + Path("a.exr") + " --json " + Path("a.json")).exit_code, 0);
+  const RunResult plain = RunKdrt("sim " + common + " -q --hits " + Path("a.exr") + " --json " + Path("a.json"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
   const RunResult sc = RunKdrt("sim " + common + " --systemc --hits " + Path("b.exr") + " --json " + Path("b.json"));
   ASSERT_EQ(sc.exit_code, 0) << sc.output;
   EXPECT_EQ(sc.output.find("Copyright"), std::string::npos) << "no SystemC banner";
