@@ -1,5 +1,7 @@
 #include "trace/tracer.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <type_traits>
 
@@ -99,26 +101,47 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
   CheckTravFormat(options);  // here, not in the ray threads
   std::vector<Hit> hits(rays.size());
   std::vector<RayCounters> counters(rays.size());
+  const PacketPlan plan = PlanPackets(image, options);
+  std::atomic<uint64_t> scalar_rays{0};
   const auto start = std::chrono::steady_clock::now();
-  RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {
-    WithTraceArith(options, [&](const auto& at, const auto& ai, auto mixed) {
+  if (plan.width > 0) {
+    // Packets of consecutive rays (a caller's camera rays run along a row
+    // or a tile); the pool's chunks are multiples of every width.
+    RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {
+      fp::ScopedFtzDaz ftz;
+      uint64_t alone = 0;
       size_t begin, end;
       while (next_chunk(&begin, &end)) {
-        for (size_t i = begin; i < end; ++i) {
-          hits[i] = ToHit(ai, TraceRayIn<decltype(mixed)::value>(at, ai, image, rays[i], options.isect,
-                                                                 options.query, &counters[i], nullptr,
-                                                                 StackLimit(options)));
+        for (size_t i = begin; i < end; i += plan.width) {
+          const int n = static_cast<int>(std::min<size_t>(plan.width, end - i));
+          TracePacket(plan, image, &rays[i], n, options, &hits[i], &counters[i], &alone);
         }
       }
-      return 0;
+      scalar_rays += alone;
     });
-  });
+  } else {
+    RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {
+      WithTraceArith(options, [&](const auto& at, const auto& ai, auto mixed) {
+        size_t begin, end;
+        while (next_chunk(&begin, &end)) {
+          for (size_t i = begin; i < end; ++i) {
+            hits[i] = ToHit(ai, TraceRayIn<decltype(mixed)::value>(at, ai, image, rays[i], options.isect,
+                                                                   options.query, &counters[i], nullptr,
+                                                                   StackLimit(options)));
+          }
+        }
+        return 0;
+      });
+    });
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (stats) {
     *stats = TraceStats{};
     stats->rays = rays.size();
     stats->seconds = seconds;
+    stats->packets = plan;
+    stats->scalar_rays = scalar_rays;
     for (size_t i = 0; i < rays.size(); ++i) {
       stats->totals += counters[i];
       if (hits[i].IsHit()) ++stats->hits;

@@ -12,6 +12,7 @@
 #include "fp/format.h"
 #include "trace/intersect.h"
 #include "trace/memory_image.h"
+#include "trace/packet.h"
 
 namespace kdrt {
 
@@ -32,6 +33,9 @@ struct TraceOptions {
   // entries ends the ray, RayCounters::overflows; trace/traversal.h).
   int stack_depth = 0;
   bool progress = false;  // a progress line on stderr for long runs
+  // Rays per packet (trace/packet.h): 0 one at a time, 4, 8 or 16; the
+  // results are the same bits either way.
+  int packets = kDefaultPacketWidth;
 };
 
 // The traversal format in effect.
@@ -51,6 +55,8 @@ struct TraceStats {
   uint64_t rays = 0;
   uint64_t hits = 0;
   double seconds = 0;  // wall-clock time of tracing alone
+  PacketPlan packets;     // how the rays were traced
+  uint64_t scalar_rays = 0;  // with packets: rays that left their packet and ran alone
 };
 
 // One ray; `path` (optional) receives the nodes fetched, in order.
