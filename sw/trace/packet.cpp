@@ -96,6 +96,69 @@ KDRT_HOT_INLINE typename Vec<W>::F NudgeDownV(typename Vec<W>::F x) {
   return reinterpret_cast<F>(move ? down : bits);
 }
 
+// The rays' side of a packet's watertight tests, lane by lane (RaySetup's
+// fields as vectors).
+template <int W>
+struct LaneRays {
+  typename Vec<W>::F o[3], sx, sy, sz, tmin;
+};
+
+// IntersectWatertight (trace/intersect.h) of one leaf's triangles against the
+// lanes `lanes`, which share the axis permutation KX, KY, KZ: each lane does
+// the scalar test's IEEE operations in the same order on the same operands
+// (as trace/leaf_x4.h does across triangles), with the leaf's tmax its own
+// best t on entry, and keeps the closest candidate by the scalar rule.
+template <int W, int KX, int KY, int KZ>
+KDRT_HOT_INLINE void LeafTestW(const LaneRays<W>& r, const img::TriangleRecord* tris, const uint32_t* ids,
+                               uint32_t count, typename Vec<W>::I lanes, typename Vec<W>::F* best_t,
+                               typename Vec<W>::F* best_u, typename Vec<W>::F* best_v, typename Vec<W>::I* best_prim) {
+  using F = typename Vec<W>::F;
+  using I = typename Vec<W>::I;
+  const F zero = SplatF<W>(0.0f);
+  const F tmax = *best_t;
+  const I sign = SplatI<W>(static_cast<int32_t>(0x80000000u));
+  for (uint32_t k = 0; k < count; ++k) {
+    const uint32_t id = ids[k];
+    const img::TriangleRecord& tri = tris[id];
+    const float* v[3] = {tri.v0, tri.v1, tri.v2};
+    F p[3][3];
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) p[j][i] = SplatF<W>(A::Load(v[j][i])) - r.o[i];
+    }
+    F x[3], y[3], z[3];
+    for (int j = 0; j < 3; ++j) {
+      x[j] = p[j][KX] - r.sx * p[j][KZ];
+      y[j] = p[j][KY] - r.sy * p[j][KZ];
+    }
+    const F e0 = x[2] * y[1] - y[2] * x[1];
+    const F e1 = x[0] * y[2] - y[0] * x[2];
+    const F e2 = x[1] * y[0] - y[1] * x[0];
+    const I any_neg = (e0 < zero) | (e1 < zero) | (e2 < zero);
+    const I any_pos = (zero < e0) | (zero < e1) | (zero < e2);
+    const F det = (e0 + e1) + e2;
+    const I det_neg = det < zero;
+    I hit = lanes & ~(any_neg & any_pos) & (det_neg | (zero < det));
+    if (MoveMask<W>(hit) == 0) continue;
+    for (int j = 0; j < 3; ++j) z[j] = r.sz * p[j][KZ];
+    const I flip = det_neg & sign;
+    const F t_scaled = reinterpret_cast<F>(reinterpret_cast<I>(((e0 * z[0]) + (e1 * z[1])) + (e2 * z[2])) ^ flip);
+    const F det_abs = reinterpret_cast<F>(reinterpret_cast<I>(det) ^ flip);
+    hit &= (r.tmin * det_abs <= t_scaled) & (t_scaled <= tmax * det_abs);
+    if (MoveMask<W>(hit) == 0) continue;
+    const F rcp = SplatF<W>(1.0f) / det_abs;
+    const F t = t_scaled * rcp;
+    const F u = reinterpret_cast<F>(reinterpret_cast<I>(e1) ^ flip) * rcp;
+    const F vv = reinterpret_cast<F>(reinterpret_cast<I>(e2) ^ flip) * rcp;
+    // id < prim as unsigned numbers (kNoPrim is the largest).
+    const I idv = SplatI<W>(static_cast<int32_t>(id ^ 0x80000000u));
+    const I better = hit & ((t < *best_t) | ((t == *best_t) & (idv < (*best_prim ^ sign))));
+    *best_t = better ? t : *best_t;
+    *best_u = better ? u : *best_u;
+    *best_v = better ? vv : *best_v;
+    *best_prim = better ? SplatI<W>(static_cast<int32_t>(id)) : *best_prim;
+  }
+}
+
 // TraceRayIn<false> (trace/traversal.h) for up to W rays at once on native
 // fp32. Lane l follows its own scalar walk: the packet is at a node, and the
 // lanes active there are those whose walk is at that node; a lane whose walk
@@ -139,6 +202,23 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
     } else {
       alive |= 1u << l;
     }
+  }
+  LaneRays<W> lr;
+  int perm[W];
+  {
+    float sx[W], sy[W], sz[W], tmin[W];
+    for (int l = 0; l < W; ++l) {
+      sx[l] = r[l].sx;
+      sy[l] = r[l].sy;
+      sz[l] = r[l].sz;
+      tmin[l] = r[l].tmin;
+      perm[l] = r[l].kz * 3 + r[l].kx;
+    }
+    std::memcpy(&lr.sx, sx, sizeof(F));
+    std::memcpy(&lr.sy, sy, sizeof(F));
+    std::memcpy(&lr.sz, sz, sizeof(F));
+    std::memcpy(&lr.tmin, tmin, sizeof(F));
+    for (int i = 0; i < 3; ++i) std::memcpy(&lr.o[i], o[i], sizeof(F));
   }
   F vo[3], vd[3], vinv[3], t0, t1;
   for (int i = 0; i < 3; ++i) {
@@ -223,7 +303,8 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
       const unsigned push_above = MoveMask<W>(push & ~below_first);
       // The packet goes first where its pushing lanes go first; a lane that
       // would push the other way round leaves it.
-      const bool below_order = __builtin_popcount(push_below) >= __builtin_popcount(push_above);
+      const bool below_order = push_above == 0 || (push_below != 0 && __builtin_popcount(push_below) >=
+                                                                           __builtin_popcount(push_above));
       unsigned pushed = push_below | push_above;
       unsigned leave = below_order ? push_above : push_below;
       if (pushed != 0) {
@@ -281,6 +362,53 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
     const uint32_t* ids = lists + nd.FirstEntry();
     float t1_lane[W];
     std::memcpy(t1_lane, &t1, sizeof(F));
+    // The lanes that share the first active lane's axis permutation test
+    // the leaf's triangles together, one triangle for all of them at a time.
+    unsigned together = 0;
+    if (raw_tris != nullptr && isect == IsectMethod::kWatertight && (active & (active - 1)) != 0) {
+      const int code = perm[__builtin_ctz(active)];
+      for (unsigned m = active; m != 0; m &= m - 1) {
+        if (perm[__builtin_ctz(m)] == code) together |= m & -m;
+      }
+      if ((together & (together - 1)) == 0) {
+        together = 0;
+      } else {
+        float bt[W], bu[W], bv[W];
+        int32_t bp[W];
+        for (int l = 0; l < W; ++l) {
+          bt[l] = best[l].t;
+          bu[l] = best[l].u;
+          bv[l] = best[l].v;
+          bp[l] = static_cast<int32_t>(best[l].prim);
+        }
+        F vt, vu, vv;
+        I vp;
+        std::memcpy(&vt, bt, sizeof(F));
+        std::memcpy(&vu, bu, sizeof(F));
+        std::memcpy(&vv, bv, sizeof(F));
+        std::memcpy(&vp, bp, sizeof(F));
+        const I lanes = MaskOf<W>(together);
+        switch (code) {
+          case 0 * 3 + 1: LeafTestW<W, 1, 2, 0>(lr, raw_tris, ids, count, lanes, &vt, &vu, &vv, &vp); break;
+          case 0 * 3 + 2: LeafTestW<W, 2, 1, 0>(lr, raw_tris, ids, count, lanes, &vt, &vu, &vv, &vp); break;
+          case 1 * 3 + 2: LeafTestW<W, 2, 0, 1>(lr, raw_tris, ids, count, lanes, &vt, &vu, &vv, &vp); break;
+          case 1 * 3 + 0: LeafTestW<W, 0, 2, 1>(lr, raw_tris, ids, count, lanes, &vt, &vu, &vv, &vp); break;
+          case 2 * 3 + 0: LeafTestW<W, 0, 1, 2>(lr, raw_tris, ids, count, lanes, &vt, &vu, &vv, &vp); break;
+          default: LeafTestW<W, 1, 0, 2>(lr, raw_tris, ids, count, lanes, &vt, &vu, &vv, &vp); break;
+        }
+        std::memcpy(bt, &vt, sizeof(F));
+        std::memcpy(bu, &vu, sizeof(F));
+        std::memcpy(bv, &vv, sizeof(F));
+        std::memcpy(bp, &vp, sizeof(F));
+        for (unsigned m = together; m != 0; m &= m - 1) {
+          const int l = __builtin_ctz(m);
+          best[l].t = bt[l];
+          best[l].u = bu[l];
+          best[l].v = bv[l];
+          best[l].prim = static_cast<uint32_t>(bp[l]);
+        }
+      }
+    }
     for (unsigned m = active; m != 0; m &= m - 1) {
       const int l = __builtin_ctz(m);
       TraceResult<A>& b = best[l];
@@ -295,7 +423,9 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
       ++walked[l].leaves;
       walked[l].tri_tests += count;
       const float leaf_tmax = b.t;
-      if (four_wide && count > 1) {
+      if ((together >> l) & 1) {
+        // tested above
+      } else if (four_wide && count > 1) {
 #if KDRT_HAVE_LEAF_X4
         for (uint32_t k = 0; k < count; k += 4) {
           float ct[4], cu[4], cv[4];

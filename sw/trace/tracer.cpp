@@ -104,7 +104,43 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
   const PacketPlan plan = PlanPackets(image, options);
   std::atomic<uint64_t> scalar_rays{0};
   const auto start = std::chrono::steady_clock::now();
-  if (plan.width > 0) {
+  const int row = options.row_width;
+  if (plan.width > 0 && row > 0 && rays.size() % row == 0) {
+    // Tiles: a packet's rays gathered from neighbouring rows, its results
+    // put back in each ray's slot.
+    const int tw = plan.width == 4 ? 2 : 4, th = plan.width / tw;
+    const size_t rows = rays.size() / row;
+    const size_t tiles_x = (row + tw - 1) / tw, tiles_y = (rows + th - 1) / th;
+    RunRayThreads(tiles_x * tiles_y, options.threads, options.progress, [&](const NextChunk& next_chunk) {
+      fp::ScopedFtzDaz ftz;
+      uint64_t alone = 0;
+      Ray tile_rays[16];
+      Hit tile_hits[16];
+      RayCounters tile_counters[16];
+      size_t index[16];
+      size_t begin, end;
+      while (next_chunk(&begin, &end)) {
+        for (size_t t = begin; t < end; ++t) {
+          const size_t x0 = t % tiles_x * tw, y0 = t / tiles_x * th;
+          int n = 0;
+          for (size_t y = y0; y < y0 + th && y < rows; ++y) {
+            for (size_t x = x0; x < x0 + tw && x < static_cast<size_t>(row); ++x) {
+              index[n] = y * row + x;
+              tile_rays[n] = rays[index[n]];
+              tile_counters[n] = RayCounters{};
+              ++n;
+            }
+          }
+          TracePacket(plan, image, tile_rays, n, options, tile_hits, tile_counters, &alone);
+          for (int k = 0; k < n; ++k) {
+            hits[index[k]] = tile_hits[k];
+            counters[index[k]] = tile_counters[k];
+          }
+        }
+      }
+      scalar_rays += alone;
+    });
+  } else if (plan.width > 0) {
     // Packets of consecutive rays (a caller's camera rays run along a row
     // or a tile); the pool's chunks are multiples of every width.
     RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {

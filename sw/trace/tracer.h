@@ -36,6 +36,10 @@ struct TraceOptions {
   // Rays per packet (trace/packet.h): 0 one at a time, 4, 8 or 16; the
   // results are the same bits either way.
   int packets = kDefaultPacketWidth;
+  // Rays in rows of this many (a camera's image, row by row): packets are
+  // then tiles of 2x2 (4 rays), 4x2 (8) or 4x4 (16) neighbouring rays.
+  // 0: packets of consecutive rays.
+  int row_width = 0;
 };
 
 // The traversal format in effect.

@@ -116,6 +116,9 @@ TEST(Packets, EveryGeneratorSameHitsAndCountersAtEveryWidth) {
     const std::vector<Ray> camera = testing::CameraRays(p.scene, 32);
     TraceOptions to;
     ExpectPacketsMatch(p.view(), camera, to, name + " camera");
+    to.row_width = 32;  // tiles
+    ExpectPacketsMatch(p.view(), camera, to, name + " camera tiles");
+    to.row_width = 0;
     ExpectPacketsMatch(p.view(), IncoherentRays(p.scene, 512), to, name + " incoherent");
     to.query = Query::kAny;
     ExpectPacketsMatch(p.view(), ShadowRays(p.view(), camera, p.scene), to, name + " shadow");
