@@ -65,6 +65,7 @@ struct RaySetFigures {
   double kd[3] = {}, emb[3] = {};
   std::string isa[3];
   uint64_t kd_alone[3] = {};  // rays that left their packet
+  double lanes[3] = {};        // active lanes per packet node fetch
   bool same_bits = true;      // kd packets == kd scalar, every ray
   int threads = 1;
   double kd_mt = 0, emb_mt = 0;  // fastest width, all threads
@@ -169,7 +170,10 @@ RaySetFigures MeasureRaySet(const kdrt::ImageView& image, const kdrt::EmbreeScen
     std::vector<Hit> hits;
     f.kd[w] = mrays(time_kd(kWidths[w], 1, &ts, &hits));
     f.isa[w] = ts.packets.width > 0 ? ts.packets.isa : "scalar";
-    f.kd_alone[w] = ts.scalar_rays;
+    f.kd_alone[w] = ts.packet_counts.scalar_rays;
+    f.lanes[w] = ts.packet_counts.node_fetches > 0
+                     ? static_cast<double>(ts.totals.nodes) / static_cast<double>(ts.packet_counts.node_fetches)
+                     : 0.0;
     f.same_bits = f.same_bits && SameBits(hits, kd_scalar_hits);
     f.emb[w] = mrays(time_embree(kWidths[w], 1));
   }
@@ -188,11 +192,11 @@ RaySetFigures MeasureRaySet(const kdrt::ImageView& image, const kdrt::EmbreeScen
 
 void PrintPacketRow(const std::string& name, size_t tris, const char* rays, const RaySetFigures& f) {
   std::printf("%-8s %9zu %-7s | %7.2f %7.2f %7.2f %7.2f | %7.2f %7.2f %7.2f %7.2f | %5.2f %5.2f %5.2f %5.2f | %7.2f "
-              "%5.2f %7.2f %5.2f | %s\n",
+              "%5.2f %7.2f %5.2f | %4.1f | %s\n",
               name.c_str(), tris, rays, f.kd1, f.kd[0], f.kd[1], f.kd[2], f.emb1, f.emb[0], f.emb[1], f.emb[2],
               *std::max_element(f.kd, f.kd + 3) / f.emb1, f.kd[0] / f.emb[0], f.kd[1] / f.emb[1], f.kd[2] / f.emb[2],
               f.kd_mt, f.kd_mt / *std::max_element(f.kd, f.kd + 3), f.emb_mt,
-              f.emb_mt / *std::max_element(f.emb, f.emb + 3), f.same_bits ? "yes" : "NO");
+              f.emb_mt / *std::max_element(f.emb, f.emb + 3), f.lanes[1], f.same_bits ? "yes" : "NO");
 }
 
 nlohmann::json PacketJson(const RaySetFigures& f) {
@@ -202,6 +206,7 @@ nlohmann::json PacketJson(const RaySetFigures& f) {
                       {"isa", f.isa[w]},
                       {"kd_mrays_per_second", f.kd[w]},
                       {"kd_rays_alone", f.kd_alone[w]},
+                      {"kd_active_lanes_per_node_fetch", f.lanes[w]},
                       {"embree_mrays_per_second", f.emb[w]},
                       {"kd_vs_embree_same_width", f.kd[w] / f.emb[w]}});
   }
@@ -405,10 +410,10 @@ int main(int argc, char** argv) {
               "        tests, ending each ray after the tracer's leaves (bench/walk_floor.h)\n");
   std::printf("\nPackets (Mrays/s; kd: the reference tracer, emb: Embree 3; 1: one ray at a time, 4/8/16: rays per "
               "packet, single thread; thr: the fastest width on every core)\n");
-  std::printf("%-8s %9s %-7s | %7s %7s %7s %7s | %7s %7s %7s %7s | %5s %5s %5s %5s | %7s %5s %7s %5s | %s\n", "scene",
-              "tris", "rays", "kd 1", "kd 4", "kd 8", "kd 16", "emb 1", "emb 4", "emb 8", "emb 16", "kd/e1", "4/4",
-              "8/8", "16/16", "kd thr", "x", "emb thr", "x", "same");
-  std::printf("%s\n", std::string(150, '-').c_str());
+  std::printf("%-8s %9s %-7s | %7s %7s %7s %7s | %7s %7s %7s %7s | %5s %5s %5s %5s | %7s %5s %7s %5s | %4s | %s\n",
+              "scene", "tris", "rays", "kd 1", "kd 4", "kd 8", "kd 16", "emb 1", "emb 4", "emb 8", "emb 16", "kd/e1",
+              "4/4", "8/8", "16/16", "kd thr", "x", "emb thr", "x", "act8", "same");
+  std::printf("%s\n", std::string(157, '-').c_str());
   for (const PacketRow& r : packet_rows) PrintPacketRow(r.name, r.tris, r.rays, r.f);
   if (!packet_rows.empty()) {
     const RaySetFigures& f = packet_rows.front().f;
@@ -416,7 +421,8 @@ int main(int argc, char** argv) {
                 f.isa[0].c_str(), f.isa[1].c_str(), f.isa[2].c_str(), PacketFormats());
   }
   std::printf("kd/e1 = the fastest kd width / Embree one ray at a time (aim >= 1); W/W = kd / Embree at width W (aim "
-              ">= 0.5);\nx = all threads / the same width on one; same = kd packets give the scalar bits on every ray\n");
+              ">= 0.5);\nx = all threads / the same width on one; act8 = active rays per node a kd packet of 8 fetches;\n"
+              "same = kd packets give the scalar bits on every ray\n");
   if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << "\n";
   return 0;
 }

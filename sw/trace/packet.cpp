@@ -168,7 +168,7 @@ KDRT_HOT_INLINE void LeafTestW(const LaneRays<W>& r, const img::TriangleRecord* 
 // are then not written).
 template <int W>
 KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int n, IsectMethod isect, Query query,
-                                    int stack_limit, Hit* hits, RayCounters* counters) {
+                                    int stack_limit, Hit* hits, RayCounters* counters, uint64_t* fetches) {
   using F = typename Vec<W>::F;
   using I = typename Vec<W>::I;
   const A a;
@@ -230,6 +230,7 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
   std::memcpy(&t1, t1s, sizeof(F));
   const F zero = SplatF<W>(0.0f);
   I nodes = SplatI<W>(0);
+  uint64_t fetched = 0;  // a local: through the pointer it stayed in memory
   unsigned fallback = 0;
 
   const auto finish = [&](int l) __attribute__((always_inline)) {
@@ -286,6 +287,7 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
     }
     const img::Node nd = raw_nodes[node];
     nodes -= act;
+    ++fetched;
     if (!nd.IsLeaf()) {
       const int axis = nd.Axis();
       const F split = SplatF<W>(A::Load(nd.Split()));
@@ -456,33 +458,34 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
   }
   // Every lane ends at a leaf or when its last stack entry pops.
   for (unsigned m = alive; m != 0; m &= m - 1) finish(__builtin_ctz(m));
+  *fetches += fetched;
   return fallback;
 }
 
 unsigned Walk4(const ImageView& image, const Ray* rays, int n, IsectMethod isect, Query query, int stack_limit,
-               Hit* hits, RayCounters* counters) {
-  return PacketWalk<4>(image, rays, n, isect, query, stack_limit, hits, counters);
+               Hit* hits, RayCounters* counters, uint64_t* fetches) {
+  return PacketWalk<4>(image, rays, n, isect, query, stack_limit, hits, counters, fetches);
 }
 
 __attribute__((target("avx2"))) unsigned Walk8(const ImageView& image, const Ray* rays, int n, IsectMethod isect,
-                                                Query query, int stack_limit, Hit* hits, RayCounters* counters) {
-  return PacketWalk<8>(image, rays, n, isect, query, stack_limit, hits, counters);
+                                                Query query, int stack_limit, Hit* hits, RayCounters* counters, uint64_t* fetches) {
+  return PacketWalk<8>(image, rays, n, isect, query, stack_limit, hits, counters, fetches);
 }
 
 __attribute__((target("avx2"))) unsigned Walk16(const ImageView& image, const Ray* rays, int n, IsectMethod isect,
-                                                 Query query, int stack_limit, Hit* hits, RayCounters* counters) {
-  return PacketWalk<16>(image, rays, n, isect, query, stack_limit, hits, counters);
+                                                 Query query, int stack_limit, Hit* hits, RayCounters* counters, uint64_t* fetches) {
+  return PacketWalk<16>(image, rays, n, isect, query, stack_limit, hits, counters, fetches);
 }
 
 // Without AVX2: 8 and 16 lanes on SSE2 registers, two or four at a time.
 unsigned Walk8Sse(const ImageView& image, const Ray* rays, int n, IsectMethod isect, Query query, int stack_limit,
-                  Hit* hits, RayCounters* counters) {
-  return PacketWalk<8>(image, rays, n, isect, query, stack_limit, hits, counters);
+                  Hit* hits, RayCounters* counters, uint64_t* fetches) {
+  return PacketWalk<8>(image, rays, n, isect, query, stack_limit, hits, counters, fetches);
 }
 
 unsigned Walk16Sse(const ImageView& image, const Ray* rays, int n, IsectMethod isect, Query query, int stack_limit,
-                   Hit* hits, RayCounters* counters) {
-  return PacketWalk<16>(image, rays, n, isect, query, stack_limit, hits, counters);
+                   Hit* hits, RayCounters* counters, uint64_t* fetches) {
+  return PacketWalk<16>(image, rays, n, isect, query, stack_limit, hits, counters, fetches);
 }
 
 bool HaveAvx2() {
@@ -519,22 +522,23 @@ PacketPlan PlanPackets(const ImageView& image, const TraceOptions& options) {
 }
 
 void TracePacket(const PacketPlan& plan, const ImageView& image, const Ray* rays, int n, const TraceOptions& options,
-                 Hit* hits, RayCounters* counters, uint64_t* scalar_rays) {
+                 Hit* hits, RayCounters* counters, PacketCounts* counts) {
+  [[maybe_unused]] uint64_t* const fetches = &counts->node_fetches;
   const int stack_limit = options.stack_depth > 0 ? options.stack_depth : kMaxTraversalStack;
   unsigned fallback = 0;
 #if KDRT_HAVE_PACKETS
   const bool avx2 = plan.isa[0] == 'a';
   switch (plan.width) {
     case 4:
-      fallback = Walk4(image, rays, n, options.isect, options.query, stack_limit, hits, counters);
+      fallback = Walk4(image, rays, n, options.isect, options.query, stack_limit, hits, counters, fetches);
       break;
     case 8:
-      fallback = avx2 ? Walk8(image, rays, n, options.isect, options.query, stack_limit, hits, counters)
-                      : Walk8Sse(image, rays, n, options.isect, options.query, stack_limit, hits, counters);
+      fallback = avx2 ? Walk8(image, rays, n, options.isect, options.query, stack_limit, hits, counters, fetches)
+                      : Walk8Sse(image, rays, n, options.isect, options.query, stack_limit, hits, counters, fetches);
       break;
     default:
-      fallback = avx2 ? Walk16(image, rays, n, options.isect, options.query, stack_limit, hits, counters)
-                      : Walk16Sse(image, rays, n, options.isect, options.query, stack_limit, hits, counters);
+      fallback = avx2 ? Walk16(image, rays, n, options.isect, options.query, stack_limit, hits, counters, fetches)
+                      : Walk16Sse(image, rays, n, options.isect, options.query, stack_limit, hits, counters, fetches);
       break;
   }
 #else
@@ -545,7 +549,7 @@ void TracePacket(const PacketPlan& plan, const ImageView& image, const Ray* rays
     const int l = __builtin_ctz(m);
     hits[l] = ToHit(a, TraceRayIn<false>(a, a, image, rays[l], options.isect, options.query, &counters[l], nullptr,
                                          stack_limit));
-    ++*scalar_rays;
+    ++counts->scalar_rays;
   }
 }
 

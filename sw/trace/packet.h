@@ -41,10 +41,21 @@ PacketPlan PlanPackets(const ImageView& image, const TraceOptions& options);
 // The formats the packet path runs (the others run the scalar walk).
 const char* PacketFormats();
 
+// What packets did, beside the per-ray counters (those are each ray's own).
+struct PacketCounts {
+  uint64_t scalar_rays = 0;   // rays that left their packet and ran alone
+  uint64_t node_fetches = 0;  // nodes fetched by packets: RayCounters::nodes / this = active lanes per fetch
+  PacketCounts& operator+=(const PacketCounts& o) {
+    scalar_rays += o.scalar_rays;
+    node_fetches += o.node_fetches;
+    return *this;
+  }
+};
+
 // Traces rays[0..n) (n <= width) as one packet with the plan's width; the
 // caller holds fp::ScopedFtzDaz. hits[i] and counters[i] (added to) are the
-// scalar tracer's; *scalar_rays counts rays that left the packet and ran alone.
+// scalar tracer's.
 void TracePacket(const PacketPlan& plan, const ImageView& image, const Ray* rays, int n,
-                 const TraceOptions& options, Hit* hits, RayCounters* counters, uint64_t* scalar_rays);
+                 const TraceOptions& options, Hit* hits, RayCounters* counters, PacketCounts* counts);
 
 }  // namespace kdrt

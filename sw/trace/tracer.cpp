@@ -1,8 +1,8 @@
 #include "trace/tracer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
+#include <mutex>
 #include <type_traits>
 
 #include "common/error.h"
@@ -102,7 +102,8 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
   std::vector<Hit> hits(rays.size());
   std::vector<RayCounters> counters(rays.size());
   const PacketPlan plan = PlanPackets(image, options);
-  std::atomic<uint64_t> scalar_rays{0};
+  std::mutex counts_mutex;
+  PacketCounts packet_counts;
   const auto start = std::chrono::steady_clock::now();
   const int row = options.row_width;
   if (plan.width > 0 && row > 0 && rays.size() % row == 0) {
@@ -113,7 +114,7 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
     const size_t tiles_x = (row + tw - 1) / tw, tiles_y = (rows + th - 1) / th;
     RunRayThreads(tiles_x * tiles_y, options.threads, options.progress, [&](const NextChunk& next_chunk) {
       fp::ScopedFtzDaz ftz;
-      uint64_t alone = 0;
+      PacketCounts alone;
       Ray tile_rays[16];
       Hit tile_hits[16];
       RayCounters tile_counters[16];
@@ -138,14 +139,15 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
           }
         }
       }
-      scalar_rays += alone;
+      const std::lock_guard<std::mutex> lock(counts_mutex);
+      packet_counts += alone;
     });
   } else if (plan.width > 0) {
     // Packets of consecutive rays (a caller's camera rays run along a row
     // or a tile); the pool's chunks are multiples of every width.
     RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {
       fp::ScopedFtzDaz ftz;
-      uint64_t alone = 0;
+      PacketCounts alone;
       size_t begin, end;
       while (next_chunk(&begin, &end)) {
         for (size_t i = begin; i < end; i += plan.width) {
@@ -153,7 +155,8 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
           TracePacket(plan, image, &rays[i], n, options, &hits[i], &counters[i], &alone);
         }
       }
-      scalar_rays += alone;
+      const std::lock_guard<std::mutex> lock(counts_mutex);
+      packet_counts += alone;
     });
   } else {
     RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {
@@ -177,7 +180,7 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
     stats->rays = rays.size();
     stats->seconds = seconds;
     stats->packets = plan;
-    stats->scalar_rays = scalar_rays;
+    stats->packet_counts = packet_counts;
     for (size_t i = 0; i < rays.size(); ++i) {
       stats->totals += counters[i];
       if (hits[i].IsHit()) ++stats->hits;

@@ -60,7 +60,7 @@ struct TraceStats {
   uint64_t hits = 0;
   double seconds = 0;  // wall-clock time of tracing alone
   PacketPlan packets;     // how the rays were traced
-  uint64_t scalar_rays = 0;  // with packets: rays that left their packet and ran alone
+  PacketCounts packet_counts;
 };
 
 // One ray; `path` (optional) receives the nodes fetched, in order.
