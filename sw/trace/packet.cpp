@@ -230,7 +230,7 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
   std::memcpy(&t1, t1s, sizeof(F));
   const F zero = SplatF<W>(0.0f);
   I nodes = SplatI<W>(0);
-  uint64_t fetched = 0;  // a local: through the pointer it stayed in memory
+  uint64_t fetched = 0;  // a local: GCC keeps a counter behind a pointer in memory
   unsigned fallback = 0;
 
   const auto finish = [&](int l) __attribute__((always_inline)) {

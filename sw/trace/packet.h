@@ -25,7 +25,8 @@ struct TraceOptions;
 // --packets: "off" (0), "4", "8" or "16"; InputError otherwise.
 int ParsePacketWidth(const std::string& text);
 
-// The default width: the fastest one measured with kdrt_bench (docs/bench.md).
+// The default width: the fastest one measured with kdrt_bench (docs/results.md,
+// "The reference tracer against Embree").
 inline constexpr int kDefaultPacketWidth = 8;
 
 // How a batch is traced.
