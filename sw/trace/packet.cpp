@@ -71,6 +71,13 @@ KDRT_HOT_INLINE typename Vec<W>::I MaskOf(unsigned bits) {
   return (SplatI<W>(static_cast<int32_t>(bits)) & lane) != SplatI<W>(0);
 }
 
+// Per lane: a where m is set, else b. As and/or on the bits: GCC lowers ?: on
+// vectors wider than the ISA's registers lane by lane.
+template <class V, class M>
+KDRT_HOT_INLINE V Select(M m, V a, V b) {
+  return reinterpret_cast<V>((reinterpret_cast<M>(a) & m) | (reinterpret_cast<M>(b) & ~m));
+}
+
 // A::NudgeUp and A::NudgeDown by kTraversalSlackUlps, lane by lane.
 template <int W>
 KDRT_HOT_INLINE typename Vec<W>::F NudgeUpV(typename Vec<W>::F x) {
@@ -80,8 +87,8 @@ KDRT_HOT_INLINE typename Vec<W>::F NudgeUpV(typename Vec<W>::F x) {
   const I bits = reinterpret_cast<I>(x);
   const I move = (x > SplatF<W>(0.0f)) & (x != inf);
   const I u = bits + SplatI<W>(static_cast<int32_t>(kTraversalSlackUlps));
-  const I up = u >= SplatI<W>(0x7F800000) ? reinterpret_cast<I>(inf) : u;
-  return reinterpret_cast<F>(move ? up : bits);
+  const I up = Select(u >= SplatI<W>(0x7F800000), reinterpret_cast<I>(inf), u);
+  return reinterpret_cast<F>(Select(move, up, bits));
 }
 
 template <int W>
@@ -90,10 +97,9 @@ KDRT_HOT_INLINE typename Vec<W>::F NudgeDownV(typename Vec<W>::F x) {
   using F = typename Vec<W>::F;
   const I bits = reinterpret_cast<I>(x);
   const I move = (x > SplatF<W>(0.0f)) & (x != SplatF<W>(A::Inf()));
-  const I down = bits < SplatI<W>(static_cast<int32_t>(0x00800000u + kTraversalSlackUlps))
-                     ? SplatI<W>(0)
-                     : bits - SplatI<W>(static_cast<int32_t>(kTraversalSlackUlps));
-  return reinterpret_cast<F>(move ? down : bits);
+  const I down = Select(bits < SplatI<W>(static_cast<int32_t>(0x00800000u + kTraversalSlackUlps)), SplatI<W>(0),
+                        bits - SplatI<W>(static_cast<int32_t>(kTraversalSlackUlps)));
+  return reinterpret_cast<F>(Select(move, down, bits));
 }
 
 // The rays' side of a packet's watertight tests, lane by lane (RaySetup's
@@ -152,10 +158,10 @@ KDRT_HOT_INLINE void LeafTestW(const LaneRays<W>& r, const img::TriangleRecord* 
     // id < prim as unsigned numbers (kNoPrim is the largest).
     const I idv = SplatI<W>(static_cast<int32_t>(id ^ 0x80000000u));
     const I better = hit & ((t < *best_t) | ((t == *best_t) & (idv < (*best_prim ^ sign))));
-    *best_t = better ? t : *best_t;
-    *best_u = better ? u : *best_u;
-    *best_v = better ? vv : *best_v;
-    *best_prim = better ? SplatI<W>(static_cast<int32_t>(id)) : *best_prim;
+    *best_t = Select(better, t, *best_t);
+    *best_u = Select(better, u, *best_u);
+    *best_v = Select(better, vv, *best_v);
+    *best_prim = Select(better, SplatI<W>(static_cast<int32_t>(id)), *best_prim);
   }
 }
 
@@ -349,8 +355,8 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
         act = far_lanes;
       } else {
         if (far_bits != 0) {
-          stack[top++] = Entry{far, far_bits, pushed, push ? t_lo : t0, t1};
-          t1 = push ? t_hi : t1;
+          stack[top++] = Entry{far, far_bits, pushed, Select(push, t_lo, t0), t1};
+          t1 = Select(push, t_hi, t1);
         }
         node = near;
         active = near_bits;
