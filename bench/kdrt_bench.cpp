@@ -10,10 +10,14 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <cstring>
+#include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
 #include "accel/kdtree.h"
@@ -22,6 +26,7 @@
 #include "scene/text_fields.h"
 #include "scenes/gen/generators.h"
 #include "trace/memory_image.h"
+#include "trace/ray_pool.h"
 #include "trace/tracer.h"
 #include "walk_floor.h"
 
@@ -33,6 +38,190 @@ std::vector<std::string> Split(const std::string& s) {
   std::string item;
   while (std::getline(in, item, ',')) out.push_back(item);
   return out;
+}
+
+constexpr int kWidths[] = {4, 8, 16};
+
+double Seconds(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool SameBits(const std::vector<kdrt::Hit>& a, const std::vector<kdrt::Hit>& b) {
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i].prim != b[i].prim || std::memcmp(&a[i].t, &b[i].t, sizeof(float)) != 0 ||
+        std::memcmp(&a[i].u, &b[i].u, sizeof(float)) != 0 || std::memcmp(&a[i].v, &b[i].v, sizeof(float)) != 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// One ray set (primary or shadow) traced by the kd-tree one ray at a time and
+// in packets of each width, and by Embree one ray at a time and in packets of
+// each width; single-threaded, then the fastest width of each on every core.
+// Mrays/s, each the fastest of `repeat` runs.
+struct RaySetFigures {
+  double kd1 = 0, emb1 = 0;
+  double kd[3] = {}, emb[3] = {};
+  std::string isa[3];
+  uint64_t kd_alone[3] = {};  // rays that left their packet
+  double lanes[3] = {};        // active lanes per packet node fetch
+  bool same_bits = true;      // kd packets == kd scalar, every ray
+  int threads = 1;
+  double kd_mt = 0, emb_mt = 0;  // fastest width, all threads
+  int kd_mt_width = 0, emb_mt_width = 0;
+};
+
+RaySetFigures MeasureRaySet(const kdrt::ImageView& image, const kdrt::EmbreeScene& embree,
+                            const std::vector<kdrt::Ray>& rays, int row_width, kdrt::Query query, int repeat,
+                            const std::vector<kdrt::Hit>& kd_scalar_hits, double kd_scalar_seconds) {
+  using namespace kdrt;
+  RaySetFigures f;
+  const double n = static_cast<double>(rays.size());
+  const auto mrays = [n](double s) { return n / s * 1e-6; };
+  const bool shadow = query == Query::kAny;
+  std::vector<Hit> theirs(rays.size());
+  std::unique_ptr<bool[]> occluded(new bool[rays.size()]);
+  // Embree over rays [begin, end) at `width` (1: single rays).
+  const auto embree_range = [&](size_t begin, size_t end, int width) {
+    if (width == 1) {
+      for (size_t i = begin; i < end; ++i) {
+        if (shadow) {
+          occluded[i] = embree.Occluded(rays[i]);
+        } else {
+          theirs[i] = embree.Intersect(rays[i]);
+        }
+      }
+      return;
+    }
+    for (size_t i = begin; i < end; i += width) {
+      const int k = static_cast<int>(std::min<size_t>(width, end - i));
+      if (shadow) {
+        embree.OccludedPacket(&rays[i], k, width, &occluded[i]);
+      } else {
+        embree.IntersectPacket(&rays[i], k, width, &theirs[i]);
+      }
+    }
+  };
+  // Primary rays in packets: the tiles the kd-tree's packets take
+  // (TraceOptions::row_width), gathered and put back the same way.
+  const auto embree_tiles = [&](size_t begin, size_t end, int width) {
+    const int tw = width == 4 ? 2 : 4, th = width / tw;
+    const size_t row = row_width, rows = rays.size() / row, tiles_x = (row + tw - 1) / tw;
+    Ray tile[16];
+    Hit tile_hits[16];
+    size_t index[16];
+    for (size_t t = begin; t < end; ++t) {
+      const size_t x0 = t % tiles_x * tw, y0 = t / tiles_x * th;
+      int k = 0;
+      for (size_t y = y0; y < y0 + th && y < rows; ++y) {
+        for (size_t x = x0; x < x0 + tw && x < row; ++x) {
+          index[k] = y * row + x;
+          tile[k] = rays[index[k]];
+          ++k;
+        }
+      }
+      embree.IntersectPacket(tile, k, width, tile_hits);
+      for (int i = 0; i < k; ++i) theirs[index[i]] = tile_hits[i];
+    }
+  };
+  const auto time_embree = [&](int width, int threads) {
+    const bool tiles = !shadow && width > 1 && row_width > 0 && rays.size() % row_width == 0;
+    size_t units = rays.size();
+    if (tiles) {
+      const int tw = width == 4 ? 2 : 4, th = width / tw;
+      units = ((row_width + tw - 1) / tw) * ((rays.size() / row_width + th - 1) / th);
+    }
+    double best = 0;
+    for (int run = 0; run < repeat; ++run) {
+      const auto start = std::chrono::steady_clock::now();
+      RunRayThreads(units, threads, false, [&](const NextChunk& next) {
+        size_t b, e;
+        while (next(&b, &e)) {
+          if (tiles) {
+            embree_tiles(b, e, width);
+          } else {
+            embree_range(b, e, width);
+          }
+        }
+      });
+      const double s = Seconds(start);
+      best = run == 0 ? s : std::min(best, s);
+    }
+    return best;
+  };
+  const auto time_kd = [&](int width, int threads, TraceStats* ts, std::vector<Hit>* hits) {
+    TraceOptions to;
+    to.threads = threads;
+    to.query = query;
+    to.packets = width;
+    to.row_width = shadow ? 0 : row_width;
+    double best = 0;
+    for (int run = 0; run < repeat; ++run) {
+      *hits = TraceRays(image, rays, to, ts);
+      best = run == 0 ? ts->seconds : std::min(best, ts->seconds);
+    }
+    return best;
+  };
+  f.kd1 = mrays(kd_scalar_seconds);
+  f.emb1 = mrays(time_embree(1, 1));
+  for (int w = 0; w < 3; ++w) {
+    TraceStats ts;
+    std::vector<Hit> hits;
+    f.kd[w] = mrays(time_kd(kWidths[w], 1, &ts, &hits));
+    f.isa[w] = ts.packets.width > 0 ? ts.packets.isa : "scalar";
+    f.kd_alone[w] = ts.packet_counts.scalar_rays;
+    f.lanes[w] = ts.packet_counts.node_fetches > 0
+                     ? static_cast<double>(ts.totals.nodes) / static_cast<double>(ts.packet_counts.node_fetches)
+                     : 0.0;
+    f.same_bits = f.same_bits && SameBits(hits, kd_scalar_hits);
+    f.emb[w] = mrays(time_embree(kWidths[w], 1));
+  }
+  const int kd_best = static_cast<int>(std::max_element(f.kd, f.kd + 3) - f.kd);
+  const int emb_best = static_cast<int>(std::max_element(f.emb, f.emb + 3) - f.emb);
+  f.kd_mt_width = kWidths[kd_best];
+  f.emb_mt_width = kWidths[emb_best];
+  f.threads = static_cast<int>(std::thread::hardware_concurrency());
+  TraceStats ts;
+  std::vector<Hit> hits;
+  f.kd_mt = mrays(time_kd(f.kd_mt_width, 0, &ts, &hits));
+  f.same_bits = f.same_bits && SameBits(hits, kd_scalar_hits);
+  f.emb_mt = mrays(time_embree(f.emb_mt_width, 0));
+  return f;
+}
+
+void PrintPacketRow(const std::string& name, size_t tris, const char* rays, const RaySetFigures& f) {
+  std::printf("%-8s %9zu %-7s | %7.2f %7.2f %7.2f %7.2f | %7.2f %7.2f %7.2f %7.2f | %5.2f %5.2f %5.2f %5.2f | %7.2f "
+              "%5.2f %7.2f %5.2f | %4.1f | %s\n",
+              name.c_str(), tris, rays, f.kd1, f.kd[0], f.kd[1], f.kd[2], f.emb1, f.emb[0], f.emb[1], f.emb[2],
+              *std::max_element(f.kd, f.kd + 3) / f.emb1, f.kd[0] / f.emb[0], f.kd[1] / f.emb[1], f.kd[2] / f.emb[2],
+              f.kd_mt, f.kd_mt / *std::max_element(f.kd, f.kd + 3), f.emb_mt,
+              f.emb_mt / *std::max_element(f.emb, f.emb + 3), f.lanes[1], f.same_bits ? "yes" : "NO");
+}
+
+nlohmann::json PacketJson(const RaySetFigures& f) {
+  nlohmann::json widths = nlohmann::json::array();
+  for (int w = 0; w < 3; ++w) {
+    widths.push_back({{"width", kWidths[w]},
+                      {"isa", f.isa[w]},
+                      {"kd_mrays_per_second", f.kd[w]},
+                      {"kd_rays_alone", f.kd_alone[w]},
+                      {"kd_active_lanes_per_node_fetch", f.lanes[w]},
+                      {"embree_mrays_per_second", f.emb[w]},
+                      {"kd_vs_embree_same_width", f.kd[w] / f.emb[w]}});
+  }
+  return {{"kd_scalar_mrays_per_second", f.kd1},
+          {"embree_single_mrays_per_second", f.emb1},
+          {"packets", widths},
+          {"kd_best_vs_embree_single", *std::max_element(f.kd, f.kd + 3) / f.emb1},
+          {"same_bits_as_scalar", f.same_bits},
+          {"threads", f.threads},
+          {"kd_threads_mrays_per_second", f.kd_mt},
+          {"kd_threads_width", f.kd_mt_width},
+          {"kd_thread_speedup", f.kd_mt / *std::max_element(f.kd, f.kd + 3)},
+          {"embree_threads_mrays_per_second", f.emb_mt},
+          {"embree_threads_width", f.emb_mt_width},
+          {"embree_thread_speedup", f.emb_mt / *std::max_element(f.emb, f.emb + 3)}};
 }
 
 }  // namespace
@@ -75,6 +264,13 @@ int main(int argc, char** argv) {
   const bool cap_gears = scenes == default_scenes && build.min_split_gain < kGearsFullGain;
 
   nlohmann::json rows = nlohmann::json::array();
+  struct PacketRow {
+    std::string name;
+    size_t tris;
+    const char* rays;
+    RaySetFigures f;
+  };
+  std::vector<PacketRow> packet_rows;
   // Every (generator, size) to run, checked before the first one runs.
   std::vector<std::pair<std::string, int>> runs;
   for (const std::string& item : Split(scenes)) {
@@ -127,6 +323,7 @@ int main(int argc, char** argv) {
     }
     TraceOptions to;
     to.threads = 1;
+    to.packets = 0;
     TraceStats ts;
     std::vector<Hit> ours;
     std::vector<RayCounters> per_ray;
@@ -157,6 +354,32 @@ int main(int argc, char** argv) {
                 tree.stats.build_seconds / embree.build_seconds(), kd_mrays, emb_mrays, kd_mrays / emb_mrays,
                 ts.totals.nodes / n, floor_mrays / emb_mrays, 100.0 * agree / n);
     std::fflush(stdout);
+    // Shadow rays: from each primary hit towards the scene's first light (a
+    // point above the scene without one), any hit.
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const Triangle& t : scene.triangles) {
+      for (const glm::vec3& v : {t.v0, t.v1, t.v2}) lo = glm::min(lo, v), hi = glm::max(hi, v);
+    }
+    const glm::vec3 light = scene.lights.empty() ? glm::vec3(0.5f * (lo.x + hi.x), hi.y + (hi.y - lo.y), hi.z)
+                                                 : scene.lights[0].position;
+    std::vector<Ray> shadow;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      if (!ours[i].IsHit()) continue;
+      const glm::vec3 p = rays[i].o + ours[i].t * rays[i].d;
+      shadow.push_back(Ray{p, light - p, 1e-4f, 1.0f});
+    }
+    TraceOptions so = to;
+    so.query = Query::kAny;
+    std::vector<Hit> shadow_hits;
+    double shadow_seconds = 0;
+    for (int run = 0; run < repeat; ++run) {
+      shadow_hits = TraceRays(image, shadow, so, &ts);
+      shadow_seconds = run == 0 ? ts.seconds : std::min(shadow_seconds, ts.seconds);
+    }
+    packet_rows.push_back({name, scene.triangles.size(), "primary",
+                           MeasureRaySet(image, embree, rays, res, Query::kClosest, repeat, ours, kd_seconds)});
+    packet_rows.push_back({name, scene.triangles.size(), "shadow",
+                           MeasureRaySet(image, embree, shadow, 0, Query::kAny, repeat, shadow_hits, shadow_seconds)});
     rows.push_back({{"scene", name},
                     {"triangles", scene.triangles.size()},
                     {"perfect_splits", build.perfect_splits},
@@ -178,11 +401,28 @@ int main(int argc, char** argv) {
                       {"setup_ns_per_ray", floor.setup_ns_per_ray},
                       {"nodes_per_ray", floor.nodes_per_ray},
                       {"mrays_per_second", floor_mrays},
-                      {"vs_embree", floor_mrays / emb_mrays}}}});
+                      {"vs_embree", floor_mrays / emb_mrays}}},
+                    {"primary", PacketJson(packet_rows[packet_rows.size() - 2].f)},
+                    {"shadow", PacketJson(packet_rows.back().f)}});
   }
   std::printf("build ratio = kd / Embree (aim <= 2); throughput ratio = kd / Embree (aim >= 0.7)\n");
   std::printf("floor = the walk floor against Embree: a bare walk of about the tracer's nodes, with no triangle\n"
               "        tests, ending each ray after the tracer's leaves (bench/walk_floor.h)\n");
+  std::printf("\nPackets (Mrays/s; kd: the reference tracer, emb: Embree 3; 1: one ray at a time, 4/8/16: rays per "
+              "packet, single thread; thr: the fastest width on every core)\n");
+  std::printf("%-8s %9s %-7s | %7s %7s %7s %7s | %7s %7s %7s %7s | %5s %5s %5s %5s | %7s %5s %7s %5s | %4s | %s\n",
+              "scene", "tris", "rays", "kd 1", "kd 4", "kd 8", "kd 16", "emb 1", "emb 4", "emb 8", "emb 16", "kd/e1",
+              "4/4", "8/8", "16/16", "kd thr", "x", "emb thr", "x", "act8", "same");
+  std::printf("%s\n", std::string(157, '-').c_str());
+  for (const PacketRow& r : packet_rows) PrintPacketRow(r.name, r.tris, r.rays, r.f);
+  if (!packet_rows.empty()) {
+    const RaySetFigures& f = packet_rows.front().f;
+    std::printf("kd packets ran on: 4 %s, 8 %s, 16 %s (packed formats: %s; the others trace one ray at a time)\n",
+                f.isa[0].c_str(), f.isa[1].c_str(), f.isa[2].c_str(), PacketFormats());
+  }
+  std::printf("kd/e1 = the fastest kd width / Embree one ray at a time (aim >= 1); W/W = kd / Embree at width W (aim "
+              ">= 0.5);\nx = all threads / the same width on one; act8 = active rays per node a kd packet of 8 fetches;\n"
+              "same = kd packets give the scalar bits on every ray\n");
   if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << "\n";
   return 0;
 }

@@ -78,4 +78,111 @@ Hit EmbreeScene::Intersect(const Ray& ray) const {
   return h;
 }
 
+namespace {
+
+// Fills an Embree SoA ray packet (RTCRay4/8/16) from rays[0..n); lanes past
+// n are invalid.
+template <int N, class RayN>
+void FillPacket(const Ray* rays, int n, RayN* ray, int* valid) {
+  for (int i = 0; i < N; ++i) {
+    const Ray& r = rays[i < n ? i : 0];
+    valid[i] = i < n ? -1 : 0;
+    ray->org_x[i] = r.o.x;
+    ray->org_y[i] = r.o.y;
+    ray->org_z[i] = r.o.z;
+    ray->dir_x[i] = r.d.x;
+    ray->dir_y[i] = r.d.y;
+    ray->dir_z[i] = r.d.z;
+    ray->tnear[i] = r.tmin;
+    ray->tfar[i] = r.tmax;
+    ray->time[i] = 0;
+    ray->mask[i] = 0xFFFFFFFFu;
+    ray->id[i] = static_cast<unsigned>(i);
+    ray->flags[i] = 0;
+  }
+}
+
+template <int N, class RayHitN, class Fn>
+void IntersectN(RTCScene scene, const Ray* rays, int n, Hit* out, Fn intersect) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(64) int valid[N];
+  alignas(64) RayHitN rh;
+  FillPacket<N>(rays, n, &rh.ray, valid);
+  for (int i = 0; i < N; ++i) {
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  intersect(valid, scene, &context, &rh);
+  for (int i = 0; i < n; ++i) {
+    out[i] = Hit{};
+    if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+    out[i].t = rh.ray.tfar[i];
+    out[i].prim = rh.hit.primID[i];
+    out[i].u = rh.hit.u[i];
+    out[i].v = rh.hit.v[i];
+  }
+}
+
+template <int N, class RayN, class Fn>
+void OccludedN(RTCScene scene, const Ray* rays, int n, bool* out, Fn occluded) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(64) int valid[N];
+  alignas(64) RayN ray;
+  FillPacket<N>(rays, n, &ray, valid);
+  occluded(valid, scene, &context, &ray);
+  // Embree sets tfar to -inf on an occluded ray.
+  for (int i = 0; i < n; ++i) out[i] = ray.tfar[i] < 0.0f;
+}
+
+}  // namespace
+
+void EmbreeScene::IntersectPacket(const Ray* rays, int n, int width, Hit* out) const {
+  if (width == 4) {
+    IntersectN<4, RTCRayHit4>(impl_->scene, rays, n, out,
+                              [](int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit4* rh) { rtcIntersect4(v, s, c, rh); });
+  } else if (width == 8) {
+    IntersectN<8, RTCRayHit8>(impl_->scene, rays, n, out,
+                              [](int* v, RTCScene s, RTCIntersectContext* c, RTCRayHit8* rh) { rtcIntersect8(v, s, c, rh); });
+  } else {
+    IntersectN<16, RTCRayHit16>(impl_->scene, rays, n, out, [](int* v, RTCScene s, RTCIntersectContext* c,
+                                                              RTCRayHit16* rh) { rtcIntersect16(v, s, c, rh); });
+  }
+}
+
+bool EmbreeScene::Occluded(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r;
+  r.org_x = ray.o.x;
+  r.org_y = ray.o.y;
+  r.org_z = ray.o.z;
+  r.dir_x = ray.d.x;
+  r.dir_y = ray.d.y;
+  r.dir_z = ray.d.z;
+  r.tnear = ray.tmin;
+  r.tfar = ray.tmax;
+  r.time = 0;
+  r.mask = 0xFFFFFFFFu;
+  r.id = 0;
+  r.flags = 0;
+  rtcOccluded1(impl_->scene, &context, &r);
+  return r.tfar < 0.0f;
+}
+
+void EmbreeScene::OccludedPacket(const Ray* rays, int n, int width, bool* out) const {
+  if (width == 4) {
+    OccludedN<4, RTCRay4>(impl_->scene, rays, n, out,
+                          [](int* v, RTCScene s, RTCIntersectContext* c, RTCRay4* r) { rtcOccluded4(v, s, c, r); });
+  } else if (width == 8) {
+    OccludedN<8, RTCRay8>(impl_->scene, rays, n, out,
+                          [](int* v, RTCScene s, RTCIntersectContext* c, RTCRay8* r) { rtcOccluded8(v, s, c, r); });
+  } else {
+    OccludedN<16, RTCRay16>(impl_->scene, rays, n, out,
+                            [](int* v, RTCScene s, RTCIntersectContext* c, RTCRay16* r) { rtcOccluded16(v, s, c, r); });
+  }
+}
+
 }  // namespace kdrt

@@ -1,5 +1,6 @@
 // Embree 3 as an independent oracle for tests and benchmarks: the same
-// triangles in an Embree scene, traced one ray at a time with rtcIntersect1.
+// triangles in an Embree scene, traced one ray at a time with rtcIntersect1 or in packets
+// (rtcIntersect4/8/16) for the speed benchmark.
 #pragma once
 
 #include <memory>
@@ -25,6 +26,12 @@ class EmbreeScene {
   double build_seconds() const { return build_seconds_; }
   // prim = triangle id in scene order, u/v = weights of v1/v2.
   Hit Intersect(const Ray& ray) const;
+  // rays[0..n) (n <= width) as one packet: rtcIntersect4, 8 or 16.
+  void IntersectPacket(const Ray* rays, int n, int width, Hit* out) const;
+  // Shadow queries: whether anything lies in [tmin, tmax] (rtcOccluded1, and
+  // rtcOccluded4, 8 or 16 for a packet).
+  bool Occluded(const Ray& ray) const;
+  void OccludedPacket(const Ray* rays, int n, int width, bool* out) const;
 
  private:
   struct Impl;

@@ -38,6 +38,8 @@ struct RenderArgs {
   std::string rays;
   std::string camera;
   int threads = 0;
+  std::string packets = std::to_string(kDefaultPacketWidth);
+  bool packets_given = false;
   bool quiet = false;
   bool strict = false;
   ShadingArgs shading;
@@ -78,6 +80,7 @@ int Run(const RenderArgs& args) {
   CheckTravFormat(to);
   to.isect = ParseIsectMethod(args.isect);
   to.threads = args.threads;
+  to.packets = ParsePacketWidth(args.packets);
   if (!IsKdTree(args.scene.accel)) CheckStructureTraceOptions(to);  // before the build
   SceneSpec spec = args.scene;
   spec.strict = args.strict;
@@ -99,6 +102,12 @@ int Run(const RenderArgs& args) {
   const int width = ray_set.width, height = ray_set.height;
 
   to.query = ray_set.query;
+  if (args.rays.empty()) to.row_width = width;  // camera rays: packets by tiles
+  const PacketPlan plan = PlanPackets(traced, to);
+  if (args.packets_given && to.packets > 0 && (plan.width == 0 || p.structure)) {
+    std::fprintf(stderr, "kdrt render: note: --packets %s: %s\n", args.packets.c_str(),
+                 p.structure ? "only the kd-tree traces in packets" : plan.why_scalar.c_str());
+  }
   to.progress = !args.quiet && isatty(STDERR_FILENO) && rays.size() >= 1000000;
   const PrecisionCheck check = CheckPrecision(image, rays, to.format, args.strict, args.threads, "", narrow_image);
   AccelTotals ts;
@@ -124,6 +133,11 @@ int Run(const RenderArgs& args) {
       {"hits", ts.hits},
       {"trace_seconds", ts.seconds},
       {"threads", to.threads},
+      {"packets",
+       {{"width", p.structure ? 0 : plan.width},
+        {"isa", p.structure || plan.width == 0 ? "scalar" : plan.isa},
+        {"formats_packed", PacketFormats()},
+        {"scalar_reason", p.structure ? "only the kd-tree traces in packets" : plan.why_scalar}}},
       {"mrays_per_second", ts.seconds > 0 ? n / ts.seconds * 1e-6 : 0.0},
       {"per_ray", PerRayJson(ts, mailbox)},
       {"totals", {{"nodes", ts.nodes}, {"leaves", ts.leaves}, {"tri_tests", ts.tri_tests}}},
@@ -145,6 +159,7 @@ int Run(const RenderArgs& args) {
       TraceOptions po = to;
       po.query = pass.query;
       po.progress = false;
+      po.row_width = 0;  // a pass's rays in pixel order: packets of consecutive pixels
       AccelTotals ps;
       std::vector<Hit> h = TraceBatch(p, traced, pass.rays, po, &ps);
       *stats = PassStats(ps, mailbox);
@@ -230,6 +245,11 @@ Runner AddRenderCommand(CLI::App& app) {
   cmd->add_option("--camera", args->camera, "Override the camera: \"fx fy fz ax ay az ux uy uz angle\"");
   AddShadingOptions(*cmd, args->shading);
   cmd->add_option("--threads", args->threads, "Threads (0: all cores; results do not depend on it)");
+  cmd->add_option("--packets", args->packets,
+                  "Rays traced together: off, 4, 8 or 16 (camera rays by tiles, shading passes by pixel; the same bits "
+                  "either way). Packed: " + std::string(PacketFormats()) + "; other formats trace one ray at a time")
+      ->capture_default_str()
+      ->each([args](const std::string&) { args->packets_given = true; });
   cmd->add_flag("-q,--quiet", args->quiet, "No summary on stdout");
   return [cmd, args]() { return cmd->parsed() ? Run(*args) : -1; };
 }

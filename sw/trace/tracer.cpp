@@ -1,6 +1,8 @@
 #include "trace/tracer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <mutex>
 #include <type_traits>
 
 #include "common/error.h"
@@ -99,26 +101,86 @@ std::vector<Hit> TraceRays(const ImageView& image, const std::vector<Ray>& rays,
   CheckTravFormat(options);  // here, not in the ray threads
   std::vector<Hit> hits(rays.size());
   std::vector<RayCounters> counters(rays.size());
+  const PacketPlan plan = PlanPackets(image, options);
+  std::mutex counts_mutex;
+  PacketCounts packet_counts;
   const auto start = std::chrono::steady_clock::now();
-  RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {
-    WithTraceArith(options, [&](const auto& at, const auto& ai, auto mixed) {
+  const int row = options.row_width;
+  if (plan.width > 0 && row > 0 && rays.size() % row == 0) {
+    // Tiles: a packet's rays gathered from neighbouring rows, its results
+    // put back in each ray's slot.
+    const int tw = plan.width == 4 ? 2 : 4, th = plan.width / tw;
+    const size_t rows = rays.size() / row;
+    const size_t tiles_x = (row + tw - 1) / tw, tiles_y = (rows + th - 1) / th;
+    RunRayThreads(tiles_x * tiles_y, options.threads, options.progress, [&](const NextChunk& next_chunk) {
+      fp::ScopedFtzDaz ftz;
+      PacketCounts alone;
+      Ray tile_rays[16];
+      Hit tile_hits[16];
+      RayCounters tile_counters[16];
+      size_t index[16];
       size_t begin, end;
       while (next_chunk(&begin, &end)) {
-        for (size_t i = begin; i < end; ++i) {
-          hits[i] = ToHit(ai, TraceRayIn<decltype(mixed)::value>(at, ai, image, rays[i], options.isect,
-                                                                 options.query, &counters[i], nullptr,
-                                                                 StackLimit(options)));
+        for (size_t t = begin; t < end; ++t) {
+          const size_t x0 = t % tiles_x * tw, y0 = t / tiles_x * th;
+          int n = 0;
+          for (size_t y = y0; y < y0 + th && y < rows; ++y) {
+            for (size_t x = x0; x < x0 + tw && x < static_cast<size_t>(row); ++x) {
+              index[n] = y * row + x;
+              tile_rays[n] = rays[index[n]];
+              tile_counters[n] = RayCounters{};
+              ++n;
+            }
+          }
+          TracePacket(plan, image, tile_rays, n, options, tile_hits, tile_counters, &alone);
+          for (int k = 0; k < n; ++k) {
+            hits[index[k]] = tile_hits[k];
+            counters[index[k]] = tile_counters[k];
+          }
         }
       }
-      return 0;
+      const std::lock_guard<std::mutex> lock(counts_mutex);
+      packet_counts += alone;
     });
-  });
+  } else if (plan.width > 0) {
+    // Packets of consecutive rays (a caller's camera rays run along a row
+    // or a tile); the pool's chunks are multiples of every width.
+    RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {
+      fp::ScopedFtzDaz ftz;
+      PacketCounts alone;
+      size_t begin, end;
+      while (next_chunk(&begin, &end)) {
+        for (size_t i = begin; i < end; i += plan.width) {
+          const int n = static_cast<int>(std::min<size_t>(plan.width, end - i));
+          TracePacket(plan, image, &rays[i], n, options, &hits[i], &counters[i], &alone);
+        }
+      }
+      const std::lock_guard<std::mutex> lock(counts_mutex);
+      packet_counts += alone;
+    });
+  } else {
+    RunRayThreads(rays.size(), options.threads, options.progress, [&](const NextChunk& next_chunk) {
+      WithTraceArith(options, [&](const auto& at, const auto& ai, auto mixed) {
+        size_t begin, end;
+        while (next_chunk(&begin, &end)) {
+          for (size_t i = begin; i < end; ++i) {
+            hits[i] = ToHit(ai, TraceRayIn<decltype(mixed)::value>(at, ai, image, rays[i], options.isect,
+                                                                   options.query, &counters[i], nullptr,
+                                                                   StackLimit(options)));
+          }
+        }
+        return 0;
+      });
+    });
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (stats) {
     *stats = TraceStats{};
     stats->rays = rays.size();
     stats->seconds = seconds;
+    stats->packets = plan;
+    stats->packet_counts = packet_counts;
     for (size_t i = 0; i < rays.size(); ++i) {
       stats->totals += counters[i];
       if (hits[i].IsHit()) ++stats->hits;

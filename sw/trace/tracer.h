@@ -12,6 +12,7 @@
 #include "fp/format.h"
 #include "trace/intersect.h"
 #include "trace/memory_image.h"
+#include "trace/packet.h"
 
 namespace kdrt {
 
@@ -32,6 +33,13 @@ struct TraceOptions {
   // entries ends the ray, RayCounters::overflows; trace/traversal.h).
   int stack_depth = 0;
   bool progress = false;  // a progress line on stderr for long runs
+  // Rays per packet (trace/packet.h): 0 one at a time, 4, 8 or 16; the
+  // results are the same bits either way.
+  int packets = kDefaultPacketWidth;
+  // Rays in rows of this many (a camera's image, row by row): packets are
+  // then tiles of 2x2 (4 rays), 4x2 (8) or 4x4 (16) neighbouring rays.
+  // 0: packets of consecutive rays.
+  int row_width = 0;
 };
 
 // The traversal format in effect.
@@ -51,6 +59,8 @@ struct TraceStats {
   uint64_t rays = 0;
   uint64_t hits = 0;
   double seconds = 0;  // wall-clock time of tracing alone
+  PacketPlan packets;     // how the rays were traced
+  PacketCounts packet_counts;
 };
 
 // One ray; `path` (optional) receives the nodes fetched, in order.
