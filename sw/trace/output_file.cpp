@@ -26,7 +26,16 @@ void OutputSet::Add(const std::string& path, const std::function<void(const std:
                                         p.extension().string()))
                         .string();
   pending_.push_back({tmp, path});
-  write(tmp);
+  try {
+    write(tmp);
+  } catch (const InputError& e) {
+    // The message names the file the user asked for, not its temporary.
+    std::string what = e.what();
+    for (size_t at = what.find(tmp); at != std::string::npos; at = what.find(tmp, at + path.size())) {
+      what.replace(at, tmp.size(), path);
+    }
+    throw InputError(what);
+  }
 }
 
 void OutputSet::AddDirectory(const std::string& path, const std::string& marker,

@@ -160,6 +160,17 @@ TEST_F(Cli, BadInputGivesClearErrorAndNoOutput) {
   }
 }
 
+// An image that cannot be written is named as the user named it (kdrt writes
+// a temporary beside it first), and nothing is left behind.
+TEST_F(Cli, UnwritableImageIsNamedAsGiven) {
+  const std::string bad = Path("image.nosuchformat");
+  const RunResult r = RunKdrt("render gen:room:100 --res 8x8 -o " + bad + " --json " + Path("out.json"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("kdrt: error: " + bad + ": cannot write image"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(".tmp"), std::string::npos) << r.output;
+  EXPECT_EQ(FileCount(), 0u);
+}
+
 TEST_F(Cli, MissingSceneAndUnknownOption) {
   RunResult r = RunKdrt("render " + Path("nope.nff") + " -o " + Path("x.png"));
   EXPECT_NE(r.exit_code, 0);
