@@ -44,6 +44,27 @@ EmbreeScene::EmbreeScene(const Scene& scene, int threads, bool robust) : impl_(s
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+namespace {
+
+RTCRay ToEmbree(const Ray& ray) {
+  RTCRay r;
+  r.org_x = ray.o.x;
+  r.org_y = ray.o.y;
+  r.org_z = ray.o.z;
+  r.dir_x = ray.d.x;
+  r.dir_y = ray.d.y;
+  r.dir_z = ray.d.z;
+  r.tnear = ray.tmin;
+  r.tfar = ray.tmax;
+  r.time = 0;
+  r.mask = 0xFFFFFFFFu;
+  r.id = 0;
+  r.flags = 0;
+  return r;
+}
+
+}  // namespace
+
 EmbreeScene::~EmbreeScene() {
   if (impl_->scene) rtcReleaseScene(impl_->scene);
   if (impl_->device) rtcReleaseDevice(impl_->device);
@@ -53,18 +74,7 @@ Hit EmbreeScene::Intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
-  rh.ray.org_x = ray.o.x;
-  rh.ray.org_y = ray.o.y;
-  rh.ray.org_z = ray.o.z;
-  rh.ray.dir_x = ray.d.x;
-  rh.ray.dir_y = ray.d.y;
-  rh.ray.dir_z = ray.d.z;
-  rh.ray.tnear = ray.tmin;
-  rh.ray.tfar = ray.tmax;
-  rh.ray.time = 0;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
+  rh.ray = ToEmbree(ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -155,19 +165,7 @@ void EmbreeScene::IntersectPacket(const Ray* rays, int n, int width, Hit* out) c
 bool EmbreeScene::Occluded(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay r;
-  r.org_x = ray.o.x;
-  r.org_y = ray.o.y;
-  r.org_z = ray.o.z;
-  r.dir_x = ray.d.x;
-  r.dir_y = ray.d.y;
-  r.dir_z = ray.d.z;
-  r.tnear = ray.tmin;
-  r.tfar = ray.tmax;
-  r.time = 0;
-  r.mask = 0xFFFFFFFFu;
-  r.id = 0;
-  r.flags = 0;
+  RTCRay r = ToEmbree(ray);
   rtcOccluded1(impl_->scene, &context, &r);
   return r.tfar < 0.0f;
 }

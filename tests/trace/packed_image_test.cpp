@@ -3,12 +3,12 @@
 // fp32 image in every format, and the errors for what does not fit.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <cstring>
 #include <random>
 
 #include "common/error.h"
 #include "fp/format.h"
+#include "tests/common/test_cores.h"
 #include "trace_test_util.h"
 
 namespace kdrt {
@@ -190,8 +190,7 @@ TEST(PackedImage, StoredBoxHoldsTheStoredTriangles) {
 // rounding the load did before. 16x16 camera rays and 256 from inside the
 // scene per generator and format; KDRT_LONG=1: 48x48 and 1500.
 TEST(PackedImage, SameHitsAsTheFp32ImageInEveryFormat) {
-  const char* long_env = std::getenv("KDRT_LONG");
-  const bool long_run = long_env != nullptr && std::string(long_env) == "1";
+  const bool long_run = testing::LongRun();
   for (const std::string& gen : GeneratorNames()) {
     Prepared p(GenerateScene(gen, 1500));
     const ImageView fp32 = p.view();

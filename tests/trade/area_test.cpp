@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +19,7 @@
 
 #include "common/error.h"
 #include "fp/format.h"
+#include "tests/common/test_cores.h"
 #include "trade/area.h"
 
 namespace kdrt::trade {
@@ -105,6 +105,21 @@ class AreaTest : public ::testing::Test {
     fs::copy(kSource + "/docs", copy / "docs", fs::copy_options::recursive);
     fs::copy(kSource + "/scripts/synth-unit.sh", copy / "scripts/synth-unit.sh");
     fs::copy(kSource + "/scripts/synth-common.sh", copy / "scripts/synth-common.sh");
+    return copy;
+  }
+
+  // CopySource, with the rows of docs/synth-table.md that start with `prefix`
+  // left out.
+  fs::path CopySourceWithoutRows(const std::string& prefix) {
+    const fs::path copy = CopySource();
+    std::ifstream in(copy / "docs/synth-table.md");
+    std::stringstream kept;
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind(prefix, 0) != 0) kept << line << '\n';
+    }
+    in.close();
+    std::ofstream(copy / "docs/synth-table.md") << kept.str();
     return copy;
   }
 
@@ -257,17 +272,7 @@ TEST_F(AreaTest, MissingFormatIsEstimatedOnRequest) {
 // it has the SRAM bits (a flip-flop synthesis of the arrays is not the
 // same unit), and the bits reach the core's sum.
 TEST_F(AreaTest, MemorySystemKeepsItsSramBitsApart) {
-  const fs::path copy = CopySource();
-  {
-    std::ifstream in(copy / "docs/synth-table.md");
-    std::stringstream kept;
-    std::string line;
-    while (std::getline(in, line)) {
-      if (line.rfind("| rt_mem_system |", 0) != 0) kept << line << '\n';
-    }
-    in.close();
-    std::ofstream(copy / "docs/synth-table.md") << kept.str();
-  }
+  const fs::path copy = CopySourceWithoutRows("| rt_mem_system |");
   options_.source_dir = copy.string();
   options_.estimate = true;  // never synthesize here
   const fs::path hashed = fs::path(options_.cache_dir) / RtlHash(copy.string());
@@ -359,11 +364,6 @@ TEST_F(AreaTest, FailedSynthesisThrowsWithTheLogAndCachesNothing) {
   }
 }
 
-bool LongRun() {
-  const char* v = std::getenv("KDRT_LONG");
-  return v != nullptr && std::string(v) == "1";
-}
-
 // One unit without a row: the copy's table lacks rt_hit_out bf16, so exactly
 // that unit goes through scripts/synth-unit.sh (about 2 s of Yosys), gives the
 // row's numbers (the same script wrote them), and comes from the cache the
@@ -372,17 +372,7 @@ TEST_F(AreaTest, SynthesizesAMissingUnitOnDemand) {
   const auto table = ReadTable();
   const auto row = table.find("rt_hit_out/bf16");
   ASSERT_NE(row, table.end());
-  const fs::path copy = CopySource();
-  {
-    std::ifstream in(copy / "docs/synth-table.md");
-    std::stringstream kept;
-    std::string line;
-    while (std::getline(in, line)) {
-      if (line.rfind("| rt_hit_out | bf16 |", 0) != 0) kept << line << '\n';
-    }
-    in.close();
-    std::ofstream(copy / "docs/synth-table.md") << kept.str();
-  }
+  const fs::path copy = CopySourceWithoutRows("| rt_hit_out | bf16 |");
   options_.source_dir = copy.string();
   std::vector<std::string> messages;
   options_.progress = [&](const std::string& m) { messages.push_back(m); };
@@ -423,7 +413,7 @@ TEST_F(AreaTest, SynthesizesAMissingUnitOnDemand) {
 // through scripts/synth-unit.sh (about 75 s of Yosys; 30-140 s on 2 cores),
 // then the same numbers from the cache. KDRT_LONG=1 only.
 TEST_F(AreaTest, SynthesizesAMissingFormatOnDemand) {
-  if (!LongRun()) GTEST_SKIP() << "seven syntheses, minutes on 2 cores: KDRT_LONG=1 (make test-long)";
+  if (!testing::LongRun()) GTEST_SKIP() << "seven syntheses, minutes on 2 cores: KDRT_LONG=1 (make test-long)";
   std::vector<std::string> messages;
   options_.progress = [&](const std::string& m) { messages.push_back(m); };
   const fp::Format f = fp::ParseFormat("e4m3");
