@@ -100,6 +100,25 @@ def file_hash(paths):
     return h.hexdigest()
 
 
+def unit_rtl_files(unit, rtl_files):
+    """The RTL files UNIT's synthesis reads: its own module's file, those of
+    the modules it instantiates (transitively) and the packages, so that a
+    change to one unit's RTL synthesizes that unit and its users again, not
+    every unit. rt_core's own logic (--glue) reads every unit's ports: all."""
+    by_module = {os.path.basename(f)[:-3]: f for f in rtl_files}
+    if unit not in by_module or unit == "rt_core":
+        return rtl_files
+    seen, todo = {unit}, [unit]
+    while todo:
+        text = open(by_module[todo.pop()]).read()
+        for m in re.finditer(r"^\s*(\w+)\s*(?:#|\w+\s*\()", text, re.M):
+            name = m.group(1)
+            if name in by_module and name not in seen:
+                seen.add(name)
+                todo.append(name)
+    return sorted(f for f in rtl_files if f.endswith("_pkg.sv") or os.path.basename(f)[:-3] in seen)
+
+
 def core_param_defaults():
     """rt_core's parameters and their defaults (None when not a number)."""
     text = open(os.path.join(RTL, "rt_core.sv")).read()
@@ -154,15 +173,23 @@ class Flow:
         os.makedirs(self.logs_dir, exist_ok=True)
         self.lib = os.environ.get("LIBERTY", DEFAULT_LIB)
         rtl_files = sorted(os.path.join(RTL, f) for f in os.listdir(RTL) if f.endswith(".sv"))
+        self.rtl_files = rtl_files
         self.rtl_hash = file_hash(rtl_files)
+        self.unit_hashes = {}
         self.lib_hash = file_hash([self.lib])
         self.mem_bytes = int(args.mem_gb * 1e9)
         self.timeout_s = args.time_min * 60
 
+    def unit_hash(self, unit):
+        if unit not in self.unit_hashes:
+            self.unit_hashes[unit] = file_hash(unit_rtl_files(unit, self.rtl_files))
+        return self.unit_hashes[unit]
+
     def key(self, unit, params, glue, sram):
         p = " ".join(f"{k}={v}" for k, v in sorted(params.items()))
+        rtl = self.rtl_hash if glue else self.unit_hash(unit)
         return sha(f"flow={FLOW_VERSION} unit={unit} glue={glue} sram={sram} period={self.args.period} "
-                   f"params={p} rtl={self.rtl_hash} lib={self.lib_hash}")[:16]
+                   f"params={p} rtl={rtl} lib={self.lib_hash}")[:16]
 
     def instances(self, params):
         """rt_core's unit instances for PARAMS: [(instance, module, {param: value})]."""
