@@ -89,6 +89,10 @@ module rt_cache #(
   input  logic                 resp_ready_i,
   output logic [LineBits-1:0]  resp_data_o,
   output logic [TagWidth-1:0]  resp_tag_o,
+  // the tag resp_tag_o shows in the next cycle (whenever resp_valid_o is
+  // then high): a memory of the requester's, read at it, answers with a
+  // registered read in the cycle the response is shown
+  output logic [TagWidth-1:0]  resp_tag_next_o,
   // memory side: id = {miss register, beat}
   output logic                 mem_req_valid_o,
   input  logic                 mem_req_ready_i,
@@ -167,35 +171,94 @@ module rt_cache #(
   logic [TagWidth-1:0] m_tag;
 
   assign done_key = mshr_key_q[KeyWidth*done_idx +: KeyWidth];
-  // The miss registers' line buffers and their merged requests are arrays of
-  // words (a beat; a request) written at one index a cycle and read at the
-  // completed register's: Yosys maps each to registers with a decoded write
-  // enable per word and a read multiplexer (a write at a computed offset
-  // into one wide vector instead builds shifters across all of it), and the
-  // simulation writes one word.
-  localparam int unsigned BeatWords = Mshrs * LineBeats;
-  localparam int unsigned TgtWords = Mshrs * Targets;
-  localparam int unsigned BeatIdxW = (BeatWords > 1) ? $clog2(BeatWords) : 1;
-  localparam int unsigned TgtIdxW = (TgtWords > 1) ? $clog2(TgtWords) : 1;
   logic [MshrW-1:0]    resp_mshr;
   logic [BeatW-1:0]    resp_beat;
   assign {resp_mshr, resp_beat} = mem_resp_id_i;
-  logic [127:0]        mshr_beat_q [BeatWords];
-  logic [BeatIdxW-1:0] beat_wr_idx;
-  assign beat_wr_idx = BeatIdxW'(32'(resp_mshr) * LineBeats + 32'(resp_beat));
-  for (genvar b = 0; b < LineBeats; b++) begin : g_done_beat
-    assign done_data[128*b +: 128] = mshr_beat_q[BeatIdxW'(32'(done_idx) * LineBeats + b)];
-  end
-  logic [TagWidth-1:0] mshr_tgt_q [TgtWords];
-  logic [TgtIdxW-1:0]  tgt_wr_idx;
   // A miss taken this cycle is a free register's first request or joins
   // after the requests of the register it joins.
   logic [MshrW-1:0] tgt_wr_mshr;
   logic [TgtW-1:0]  tgt_wr_slot;
   assign tgt_wr_mshr = m_join ? m_join_idx : free_idx;
   assign tgt_wr_slot = m_join ? m_join_cnt : '0;
-  assign tgt_wr_idx = TgtIdxW'(32'(tgt_wr_mshr) * Targets + 32'(tgt_wr_slot));
-  assign done_tag = mshr_tgt_q[TgtIdxW'(32'(done_idx) * Targets + 32'(done_out))];
+
+  // The miss registers' line buffers and merged requests are memories with
+  // the ports an SRAM compiler gives (rt_ram_1r1w: one write port, one read
+  // port with a registered read): one memory per beat (a word per
+  // register) and one of the merged requests, each written once a cycle at
+  // most. They are read at the register that is the completed one in the next cycle
+  // (done_idx_next: the registers' next state, as the updates below give
+  // it), so the registered read gives the completed register's line and
+  // requests in the cycle it is answered, as a read of flip-flops at
+  // done_idx would. A word written in the cycle it is read (the beat that
+  // completes the line, a request joining it) is forwarded.
+  logic [Mshrs-1:0] done_next;
+  logic             unused_done_next_valid;
+  logic [MshrW-1:0] done_idx_next, done_idx_q;
+  for (genvar m = 0; m < Mshrs; m++) begin : g_next
+    logic alloc_here, resp_here, free_here, valid_next;
+    logic [LineBeats-1:0] got_next;
+    assign alloc_here = m_take && !m_join && free_idx == MshrW'(m);
+    assign resp_here = mem_resp_valid_i && resp_mshr == MshrW'(m);
+    assign free_here = deliver && (done_last || done_cnt == '0) && done_idx == MshrW'(m);
+    assign valid_next = free_here ? 1'b0 : alloc_here ? 1'b1 : mshr_valid_q[m];
+    assign got_next = resp_here ? mshr_got_q[LineBeats*m +: LineBeats] | LineBeats'(1 << resp_beat)
+                    : alloc_here ? '0 : mshr_got_q[LineBeats*m +: LineBeats];
+    assign done_next[m] = valid_next && (&got_next);
+  end
+  rt_prio_enc #(.N(Mshrs)) u_done_next_enc (.req_i(done_next), .valid_o(unused_done_next_valid),
+                                            .idx_o(done_idx_next));
+
+  for (genvar b = 0; b < LineBeats; b++) begin : g_beat_ram
+    logic         we, fwd_q;
+    logic [127:0] rdata, fwd_data_q;
+    assign we = mem_resp_valid_i && resp_beat == BeatW'(b);
+    rt_ram_1r1w #(.Words(Mshrs), .Width(128)) u_ram (
+      .clk_i, .we_i(we), .waddr_i(resp_mshr), .wdata_i(mem_resp_data_i), .re_i(1'b1),
+      .raddr_i(done_idx_next), .rdata_o(rdata)
+    );
+    always_ff @(posedge clk_i) begin
+      fwd_q <= we && resp_mshr == done_idx_next;
+      fwd_data_q <= mem_resp_data_i;
+    end
+    assign done_data[128*b +: 128] = fwd_q ? fwd_data_q : rdata;
+  end
+
+  // The merged requests: one memory of a word per target slot, register m's
+  // slot k at m * Targets + k, read at the next cycle's completed register
+  // and the slot it answers then.
+  localparam int unsigned TgtWords = Mshrs * Targets;
+  localparam int unsigned TgtIdxW = (TgtWords > 1) ? $clog2(TgtWords) : 1;
+  logic [TgtW-1:0]     out_next_at_done;
+  logic [TgtIdxW-1:0]  tgt_waddr, tgt_raddr;
+  logic                tgt_fwd_q;
+  logic [TagWidth-1:0] tgt_rdata, tgt_fwd_data_q;
+  always_comb begin
+    out_next_at_done = mshr_out_q[TgtW*done_idx_next +: TgtW];
+    if (m_take && !m_join && free_idx == done_idx_next) out_next_at_done = '0;
+    if (deliver && done_idx == done_idx_next) out_next_at_done = done_out + 1'b1;
+  end
+  assign tgt_waddr = TgtIdxW'(32'(tgt_wr_mshr) * Targets + 32'(tgt_wr_slot));
+  assign tgt_raddr = TgtIdxW'(32'(done_idx_next) * Targets + 32'(out_next_at_done));
+  rt_ram_1r1w #(.Words(TgtWords), .Width(TagWidth)) u_tgt_ram (
+    .clk_i, .we_i(m_take), .waddr_i(tgt_waddr), .wdata_i(m_tag), .re_i(1'b1), .raddr_i(tgt_raddr),
+    .rdata_o(tgt_rdata)
+  );
+  always_ff @(posedge clk_i) begin
+    tgt_fwd_q <= m_take && tgt_waddr == tgt_raddr;
+    tgt_fwd_data_q <= m_tag;
+  end
+  assign done_tag = tgt_fwd_q ? tgt_fwd_data_q : tgt_rdata;
+
+`ifndef SYNTHESIS
+  always_ff @(posedge clk_i) begin
+    done_idx_q <= done_idx_next;
+    if (rst_ni && done_valid) begin
+      assert (done_idx == done_idx_q) else $error("rt_cache: the memories were read at another register");
+    end
+  end
+`else
+  assign done_idx_q = '0;
+`endif
   assign done_cnt = mshr_cnt_q[TgtW*done_idx +: TgtW];
   assign done_out = mshr_out_q[TgtW*done_idx +: TgtW];
   assign done_last = done_out + 1'b1 == done_cnt;
@@ -343,6 +406,12 @@ module rt_cache #(
                           AddrWidth'(send_beat) * AddrWidth'(16);
   assign mem_req_id_o = {send_idx, send_beat[BeatW-1:0]};
 
+  // The response registers' next state, as the updates below give it.
+  logic del_valid_next;
+  assign del_valid_next = (deliver && done_cnt != '0) || (del_valid_q && !out_take);
+  assign resp_tag_next_o = del_valid_next ? (deliver ? done_tag : del_tag_q)
+                                          : ((accept && lookup_hit) ? req_tag_i : hit_tag_q);
+
   assign resp_valid_o = hit_valid_q || del_valid_q;
   assign resp_data_o = del_valid_q ? del_data_q : hit_data_q;
   assign resp_tag_o = del_valid_q ? del_tag_q : hit_tag_q;
@@ -394,9 +463,7 @@ module rt_cache #(
       hit_data_q <= data_q[hit_line];
       hit_tag_q <= req_tag_i;
     end
-    if (mem_resp_valid_i) mshr_beat_q[beat_wr_idx] <= mem_resp_data_i;
     if (m_take) begin
-      mshr_tgt_q[tgt_wr_idx] <= m_tag;
       if (!m_join) begin
         mshr_key_q[KeyWidth*free_idx +: KeyWidth] <= m_key;
         mshr_addr_q[AddrWidth*free_idx +: AddrWidth] <= m_addr;

@@ -123,12 +123,12 @@ module rt_core #(
   endfunction
 
   // ------------------------------------------------------------ thread table
+  // The ray as set up, written once per ray (at setup) and read by two
+  // units, is in two memories with an SRAM's ports, one per reader (below);
+  // the fields that change during traversal and those read at an index
+  // chosen in the same cycle are registers.
   logic [RayIdWidth-1:0]   ray_id_q [Threads];
-  logic [3*W-1:0]          o_q [Threads], d_q [Threads];
-  logic [3*TW-1:0]         inv_q [Threads];        // the traversal's format
-  logic [3*W-1:0]          shear_q [Threads];  // sx, sy, sz
-  logic [5:0]              axes_q [Threads];   // kz, ky, kx (2 bits each)
-  logic [W-1:0]            tmin_q [Threads], t0_q [Threads], t1_q [Threads], leaf_tmax_q [Threads];
+  logic [W-1:0]            t0_q [Threads], t1_q [Threads];
   logic signed [KW-1:0]    t_scale_q [Threads];  // k: world t = framed t * 2^k
   logic [NodeIdxWidth-1:0] node_q [Threads];
   logic [Threads-1:0]      ovf_q;              // the stack overflowed
@@ -200,7 +200,7 @@ module rt_core #(
   // of beat i / 2^SlotBits; its below child is the next slot.
   logic                         node_valid, node_ready, node_fire, node_is_leaf;
   logic [NodeLineBeats*128-1:0] node_line;
-  logic [ThW-1:0]               node_tag;
+  logic [ThW-1:0]               node_tag, node_tag_next;
   logic [AddrWidth-1:0]         node_addr;
   logic [NodeBits-1:0]          node_bits;
   logic [IW-1:0]                node_lo;
@@ -234,11 +234,23 @@ module rt_core #(
   logic [W-1:0]            trav_ts_lo, trav_ts_hi, trav_t1;
   assign node_ready = node_is_leaf || trav_in_ready;
   assign node_fire = node_valid && node_ready;
+  // The traversal's ray (o, d, 1 / d of every axis): a memory written at
+  // setup and read at the thread whose node the node cache shows in the
+  // next cycle (its resp_tag_next_o), so the registered read gives the
+  // thread of node_tag in the cycle its node is shown, as a register read at
+  // node_tag would. (A thread is never set up in the cycle before its node
+  // is shown: the clip and a fetch lie between; checked below.)
+  logic [3*W-1:0]  trav_o, trav_d;
+  logic [3*TW-1:0] trav_inv;
+  rt_ram_1r1w #(.Words(Threads), .Width(6*W + 3*TW)) u_trav_ray (
+    .clk_i, .we_i(setup_fire), .waddr_i(setup_tag), .wdata_i({setup_inv, setup_d, setup_o}),
+    .re_i(1'b1), .raddr_i(node_tag_next), .rdata_o({trav_inv, trav_d, trav_o})
+  );
   rt_trav_unit #(.E(E), .M(M), .TagWidth(ThW), .NodeIdxWidth(NodeIdxWidth), .TravE(TravE), .TravM(TravM)) u_trav (
     .clk_i, .rst_ni, .in_valid_i(node_valid && !node_is_leaf), .in_ready_o(trav_in_ready),
     .in_tag_i(node_tag), .in_split_i(node_split), .in_below_i(node_below),
-    .in_above_i(NodeIdxWidth'(node_hi)), .in_o_i(o_q[node_tag][W*node_axis +: W]),
-    .in_d_i(d_q[node_tag][W*node_axis +: W]), .in_inv_i(inv_q[node_tag][TW*node_axis +: TW]),
+    .in_above_i(NodeIdxWidth'(node_hi)), .in_o_i(trav_o[W*node_axis +: W]),
+    .in_d_i(trav_d[W*node_axis +: W]), .in_inv_i(trav_inv[TW*node_axis +: TW]),
     .in_t0_i(t0_q[node_tag]), .in_t1_i(t1_q[node_tag]),
     .out_valid_o(trav_valid), .out_ready_i(1'b1), .out_tag_o(trav_tag), .out_action_o(trav_action),
     .out_first_o(trav_first), .out_second_o(trav_second), .out_ts_o(), .out_ts_lo_o(trav_ts_lo),
@@ -270,6 +282,7 @@ module rt_core #(
   logic                 list_pf_valid, list_pf_ready;
   logic [AddrWidth-1:0] list_pf_addr;
   logic                   tri_valid, tri_fire;
+  logic [ThW-1:0]         tri_tag_next;
   logic [TriIdxWidth-1:0] tri_id;
   logic [TriRecBits-1:0]  tri_record;
   logic [kdrt_pkg::TriVertexBits-1:0] tri_vertices;  // binary32, as the unit loads them
@@ -294,12 +307,29 @@ module rt_core #(
   logic [31:0]    isect_id;
   logic [W-1:0]   isect_t, isect_u, isect_v;
   assign tri_fire = tri_valid && isect_in_ready;
+  // The intersection's ray (o, the shear and axes, tmin): a memory as the
+  // traversal's, read at the thread of the next cycle's triangle.
+  logic [3*W-1:0] isect_o, isect_shear;  // sx, sy, sz
+  logic [5:0]     isect_axes;            // kz, ky, kx (2 bits each)
+  logic [W-1:0]   isect_tmin;
+  rt_ram_1r1w #(.Words(Threads), .Width(7*W + 6)) u_isect_ray (
+    .clk_i, .we_i(setup_fire), .waddr_i(setup_tag),
+    .wdata_i({setup_tmin, setup_kz, setup_ky, setup_kx, setup_sz, setup_sy, setup_sx, setup_o}),
+    .re_i(1'b1), .raddr_i(tri_tag_next), .rdata_o({isect_tmin, isect_axes, isect_shear, isect_o})
+  );
+  // The closest t when the thread's leaf began, the leaf's tests' tmax:
+  // written when a leaf's job is queued, read as the ray memory is.
+  logic [W-1:0] isect_tmax;
+  rt_ram_1r1w #(.Words(Threads), .Width(W)) u_leaf_tmax (
+    .clk_i, .we_i(job_push), .waddr_i(node_tag), .wdata_i(leaf_best_t),
+    .re_i(1'b1), .raddr_i(tri_tag_next), .rdata_o(isect_tmax)
+  );
   rt_isect_unit #(.E(E), .M(M), .TagWidth(ThW)) u_isect (
     .clk_i, .rst_ni, .in_valid_i(tri_valid), .in_ready_o(isect_in_ready), .in_tag_i(tri_tag),
-    .in_id_i(32'(tri_id)), .in_o_i(o_q[tri_tag]), .in_kx_i(axes_q[tri_tag][1:0]),
-    .in_ky_i(axes_q[tri_tag][3:2]), .in_kz_i(axes_q[tri_tag][5:4]), .in_sx_i(shear_q[tri_tag][0 +: W]),
-    .in_sy_i(shear_q[tri_tag][W +: W]), .in_sz_i(shear_q[tri_tag][2*W +: W]), .in_tmin_i(tmin_q[tri_tag]),
-    .in_tmax_i(leaf_tmax_q[tri_tag]), .in_tri_i(tri_vertices),
+    .in_id_i(32'(tri_id)), .in_o_i(isect_o), .in_kx_i(isect_axes[1:0]),
+    .in_ky_i(isect_axes[3:2]), .in_kz_i(isect_axes[5:4]), .in_sx_i(isect_shear[0 +: W]),
+    .in_sy_i(isect_shear[W +: W]), .in_sz_i(isect_shear[2*W +: W]), .in_tmin_i(isect_tmin),
+    .in_tmax_i(isect_tmax), .in_tri_i(tri_vertices),
     .out_valid_o(isect_valid), .out_ready_i(1'b1), .out_tag_o(isect_tag), .out_id_o(isect_id),
     .out_hit_o(isect_hit), .out_t_o(isect_t), .out_u_o(isect_u), .out_v_o(isect_v)
   );
@@ -331,11 +361,12 @@ module rt_core #(
     .node_req2_valid_i(fetch2_valid), .node_req2_ready_o(node_req2_ready), .node_req2_tag_i(fetch2_idx),
     .node_req2_addr_i(node_base_i + (AddrWidth'(node_q[fetch2_idx]) >> SlotBits << 4)),
     .node_resp_valid_o(node_valid), .node_resp_ready_i(node_ready), .node_resp_tag_o(node_tag),
+    .node_resp_tag_next_o(node_tag_next),
     .node_resp_line_o(node_line),
     .list_req_valid_i(list_req_valid), .list_req_ready_o(list_req_ready), .list_req_tag_i(list_req_tag),
     .list_req_addr_i(list_req_addr), .list_req_count_i(list_req_count), .list_pf_valid_i(list_pf_valid),
     .list_pf_ready_o(list_pf_ready), .list_pf_addr_i(list_pf_addr), .tri_resp_valid_o(tri_valid), .tri_resp_ready_i(isect_in_ready),
-    .tri_resp_tag_o(tri_tag), .tri_resp_id_o(tri_id), .tri_resp_o(tri_record),
+    .tri_resp_tag_o(tri_tag), .tri_resp_tag_next_o(tri_tag_next), .tri_resp_id_o(tri_id), .tri_resp_o(tri_record),
     .mem_req_valid_o, .mem_req_ready_i, .mem_req_addr_o, .mem_req_tag_o, .mem_resp_valid_i, .mem_resp_tag_i,
     .mem_resp_data_i, .hit_o(cache_hit), .miss_o(cache_miss), .merge_o(cache_merge),
     .wait_inflight_o(cache_wait_inflight), .wait_mshr_o(cache_wait_mshr), .list_prefetch_o(list_prefetch),
@@ -379,13 +410,7 @@ module rt_core #(
       any_q[alloc_idx] <= ray_any_i;
     end
     if (setup_fire) begin
-      o_q[setup_tag] <= setup_o;
-      d_q[setup_tag] <= setup_d;
-      inv_q[setup_tag] <= setup_inv;
-      tmin_q[setup_tag] <= setup_tmin;
       t_scale_q[setup_tag] <= setup_t_scale;
-      shear_q[setup_tag] <= {setup_sz, setup_sy, setup_sx};
-      axes_q[setup_tag] <= {setup_kz, setup_ky, setup_kx};
       ovf_q[setup_tag] <= 1'b0;
       node_q[setup_tag] <= '0;
     end
@@ -393,7 +418,6 @@ module rt_core #(
       t0_q[clip_tag] <= clip_t0;
       t1_q[clip_tag] <= clip_t1;
     end
-    if (node_fire && job_push) leaf_tmax_q[node_tag] <= leaf_best_t;
     if (trav_valid) node_q[trav_tag] <= (trav_action == kdrt_pkg::TravSecond) ? trav_second : trav_first;
     if (trav_push) t1_q[trav_tag] <= trav_ts_hi;
     if (trav_overflow) ovf_q[trav_tag] <= 1'b1;
@@ -410,6 +434,36 @@ module rt_core #(
   logic unused_bits;
   assign unused_bits = ^{node_addr, tri_record, isect_id};
   /* verilator lint_on UNUSEDSIGNAL */
+
+`ifndef SYNTHESIS
+  // The ray memories are read a cycle ahead of their readers and a read of
+  // the word written in the same cycle gives the word before it: a thread
+  // set up in one cycle has neither its node nor a triangle shown in the
+  // next, nor a triangle in the cycle after its leaf's job is queued.
+  logic           setup_was_q, job_was_q;
+  logic [ThW-1:0] setup_was_tag_q, job_was_tag_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      setup_was_q <= 1'b0;
+      job_was_q <= 1'b0;
+    end else begin
+      setup_was_q <= setup_fire;
+      job_was_q <= job_push;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    setup_was_tag_q <= setup_tag;
+    job_was_tag_q <= node_tag;
+    if (rst_ni && setup_was_q) begin
+      assert (!(node_valid && node_tag == setup_was_tag_q) && !(tri_valid && tri_tag == setup_was_tag_q))
+      else $error("rt_core: a node or triangle shown in the cycle after its thread's setup");
+    end
+    if (rst_ni && job_was_q) begin
+      assert (!(tri_valid && tri_tag == job_was_tag_q))
+      else $error("rt_core: a triangle shown in the cycle after its thread's leaf job was queued");
+    end
+  end
+`endif
 
   // The ray-in stream's rule (the units check the other streams).
   rt_stream_check #(.Width(RayIdWidth + 257), .Name("rt_core ray in")) u_ray_check (

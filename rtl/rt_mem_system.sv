@@ -63,6 +63,7 @@ module rt_mem_system #(
   output logic                         node_resp_valid_o,
   input  logic                         node_resp_ready_i,
   output logic [TagWidth-1:0]          node_resp_tag_o,
+  output logic [TagWidth-1:0]          node_resp_tag_next_o,  // node_resp_tag_o of the next cycle (rt_cache)
   output logic [NodeLineBeats*128-1:0] node_resp_line_o,
   // list entries, answered with their triangles
   input  logic                         list_req_valid_i,
@@ -77,6 +78,7 @@ module rt_mem_system #(
   output logic                         tri_resp_valid_o,
   input  logic                         tri_resp_ready_i,
   output logic [TagWidth-1:0]          tri_resp_tag_o,
+  output logic [TagWidth-1:0]          tri_resp_tag_next_o,  // tri_resp_tag_o of the next cycle (rt_cache)
   output logic [TriIdxWidth-1:0]       tri_resp_id_o,
   output logic [TriBits-1:0]           tri_resp_o,
   // memory
@@ -123,7 +125,7 @@ module rt_mem_system #(
     .req2_key_i(node_req2_addr_i[AddrWidth-1:NodeOffW]),
     .req2_addr_i({node_req2_addr_i[AddrWidth-1:NodeOffW], {NodeOffW{1'b0}}}), .req2_tag_i(node_req2_tag_i),
     .resp_valid_o(node_resp_valid_o), .resp_ready_i(node_resp_ready_i), .resp_data_o(node_resp_line_o),
-    .resp_tag_o(node_resp_tag_o),
+    .resp_tag_o(node_resp_tag_o), .resp_tag_next_o(node_resp_tag_next_o),
     .mem_req_valid_o(mem_valid[0]), .mem_req_ready_i(mem_ready[0]), .mem_req_addr_o(node_mem_addr),
     .mem_req_id_o(node_mem_id), .mem_resp_valid_i(mem_resp_valid[0]), .mem_resp_id_i(mem_resp_id),
     .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[0]), .miss_o(miss_o[0]), .merge_o(merge_o[0]),
@@ -141,6 +143,8 @@ module rt_mem_system #(
   logic [TagWidth-1:0]          list_resp_tag, entry_tag;
   logic [ListOffW-1:0]          list_resp_off;
   logic [TriIdxWidth-1:0]       entry_tri;
+  logic [ListTagW-1:0]          unused_list_tag_next;  // the list cache's responses go to the line register
+  logic [TriIdxWidth-1:0]       unused_tri_id_next;
   rt_cache #(.Lines(ListCacheLines), .LineBeats(ListLineBeats), .KeyWidth(AddrWidth - ListOffW),
              .AddrWidth(AddrWidth), .TagWidth(ListTagW), .Mshrs(CacheMshrs),
              .Targets(CacheTargets), .Ways(CacheWays), .PrefetchPort(ListPrefetch != 0))
@@ -154,7 +158,7 @@ module rt_mem_system #(
     .req2_key_i(list_pf_addr_i[AddrWidth-1:ListOffW]),
     .req2_addr_i({list_pf_addr_i[AddrWidth-1:ListOffW], {ListOffW{1'b0}}}), .req2_tag_i('0),
     .resp_valid_o(list_resp_valid), .resp_ready_i(list_resp_ready), .resp_data_o(list_line),
-    .resp_tag_o(list_resp_tag_full),
+    .resp_tag_o(list_resp_tag_full), .resp_tag_next_o(unused_list_tag_next),
     .mem_req_valid_o(mem_valid[1]), .mem_req_ready_i(mem_ready[1]), .mem_req_addr_o(list_mem_addr),
     .mem_req_id_o(list_mem_id), .mem_resp_valid_i(mem_resp_valid[1]), .mem_resp_id_i(mem_resp_id),
     .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[1]), .miss_o(miss_o[1]), .merge_o(merge_o[1]),
@@ -234,7 +238,7 @@ module rt_mem_system #(
     .req_tag_i({entry_tag, entry_tri}),
     .req2_valid_i(1'b0), .req2_ready_o(unused_req2_ready), .req2_key_i('0), .req2_addr_i('0), .req2_tag_i('0),
     .resp_valid_o(tri_resp_valid_o), .resp_ready_i(tri_resp_ready_i), .resp_data_o(tri_line),
-    .resp_tag_o({tri_resp_tag_o, tri_resp_id_o}),
+    .resp_tag_o({tri_resp_tag_o, tri_resp_id_o}), .resp_tag_next_o({tri_resp_tag_next_o, unused_tri_id_next}),
     .mem_req_valid_o(mem_valid[2]), .mem_req_ready_i(mem_ready[2]), .mem_req_addr_o(tri_mem_addr),
     .mem_req_id_o(tri_mem_id), .mem_resp_valid_i(mem_resp_valid[2]), .mem_resp_id_i(mem_resp_id),
     .mem_resp_data_i(mem_resp_data), .hit_o(hit_o[2]), .miss_o(miss_o[2]), .merge_o(merge_o[2]),

@@ -54,9 +54,11 @@ DEFAULT_LIB = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib"
 # RTL (part of every cache key).
 FLOW_VERSION = "1"
 # Units whose memories are SRAM macros: the caches' line arrays (as in
-# scripts/synth.sh) and the stacks' memory (rt_ram_1r1w in rt_leaf_exit,
-# 360,448 bits in the default core, far beyond what flip-flops can hold).
-SRAM_UNITS = {"rt_mem_system", "rt_cache", "rt_leaf_exit", "rt_thread_stack"}
+# scripts/synth.sh), the memories of rt_ram_1r1w: the stacks' (in
+# rt_leaf_exit, 360,448 bits in the default core, far beyond what flip-flops
+# can hold), the miss registers' line buffers and requests (in rt_cache) and
+# the thread table's ray memories (instances of rt_core's own).
+SRAM_UNITS = {"rt_mem_system", "rt_cache", "rt_leaf_exit", "rt_thread_stack", "rt_ram_1r1w"}
 # The size parameters an estimate scales, in this order of preference.
 SCALE_PARAMS = ("Threads", "Jobs", "N", "CacheMshrs")
 

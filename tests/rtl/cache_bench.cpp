@@ -85,6 +85,7 @@ bool Run(const char* name, int beats, int mshrs, int targets, bool miss_port, ui
   size_t max_misses_in_flight = 0;
   Request pending{}, pending2{};
   bool have_pending = false, have_pending2 = false;
+  uint32_t next_tag = 0;  // resp_tag_next_o of the cycle before
   uint64_t taken2 = 0;  // requests the miss-only port took
   auto new_request = [&](Request* r) {
     const uint32_t key = key_dist(rng);
@@ -149,6 +150,7 @@ bool Run(const char* name, int beats, int mshrs, int targets, bool miss_port, ui
     }
     dut.mem_req_ready_i = !stall(rng);
     sim.Settle();
+    if (dut.resp_valid_o && dut.resp_tag_o != next_tag) return fail("resp_tag_next_o was not the next response's tag");
     if (dut.mem_req_valid_o && dut.mem_req_ready_i) {
       in_flight.push_back(
           Beat{cycle + static_cast<uint64_t>(latency(rng)), dut.mem_req_addr_o, dut.mem_req_id_o});
@@ -209,6 +211,7 @@ bool Run(const char* name, int beats, int mshrs, int targets, bool miss_port, ui
       free_tags.push_back(tag);
       ++answered;
     }
+    next_tag = dut.resp_tag_next_o;
     sim.Tick();
   }
   // Drain: nothing more may come back.
@@ -271,6 +274,7 @@ int64_t PrefetchRun(const char* name, int beats, bool prefetch, uint64_t count) 
   Request pending{};
   bool have_pending = false, have_pf = false;
   uint32_t pf_key = 0;
+  uint32_t next_tag = 0;  // resp_tag_next_o of the cycle before
   auto fail = [&](const char* what) {
     std::printf("rt_cache %s: FAIL after %llu requests: %s\n", name, static_cast<unsigned long long>(sent), what);
     return int64_t{-1};
@@ -318,6 +322,7 @@ int64_t PrefetchRun(const char* name, int beats, bool prefetch, uint64_t count) 
     memory(cycle);
     dut.mem_req_ready_i = !stall(rng);
     sim.Settle();
+    if (dut.resp_valid_o && dut.resp_tag_o != next_tag) return fail("resp_tag_next_o was not the next response's tag");
     if (!prefetch && dut.req2_ready_o && dut.req2_valid_i) return fail("a prefetch taken with none offered");
     if (dut.mem_req_valid_o && dut.mem_req_ready_i) {
       in_flight.push_back(Beat{cycle + static_cast<uint64_t>(latency(rng)), dut.mem_req_addr_o, dut.mem_req_id_o});
@@ -347,6 +352,7 @@ int64_t PrefetchRun(const char* name, int beats, bool prefetch, uint64_t count) 
       outstanding.erase(it);
       ++answered;
     }
+    next_tag = dut.resp_tag_next_o;
     sim.Tick();
   }
   // Drain: the prefetches' beats come in, nothing is answered, every miss
