@@ -124,10 +124,10 @@ module rt_core #(
 
   // ------------------------------------------------------------ thread table
   // The ray as set up, written once per ray (at setup) and read by two
-  // units, is in two memories with an SRAM's ports, one per reader (below);
-  // the fields that change during traversal and those read at an index
-  // chosen in the same cycle are registers.
-  logic [RayIdWidth-1:0]   ray_id_q [Threads];
+  // units, is in two memories with an SRAM's ports, one per reader, and the
+  // ray id, read only by the hit output, in a third (below); the fields that
+  // change during traversal and those read at an index chosen in the same
+  // cycle are registers.
   logic [W-1:0]            t0_q [Threads], t1_q [Threads];
   logic signed [KW-1:0]    t_scale_q [Threads];  // k: world t = framed t * 2^k
   logic [NodeIdxWidth-1:0] node_q [Threads];
@@ -335,7 +335,7 @@ module rt_core #(
   );
 
   // The closest hits: smaller t wins, equal t goes to the smaller id.
-  logic                   out_hit;
+  logic                   out_hit, out_fire;
   logic [TriIdxWidth-1:0] out_prim;
   logic [W-1:0]           leaf_best_t, out_t, out_u, out_v;
   rt_hit_merge #(.E(E), .M(M), .Threads(Threads), .PrimWidth(TriIdxWidth)) u_merge (
@@ -344,7 +344,7 @@ module rt_core #(
     .cand_prim_i(TriIdxWidth'(isect_id)), .cand_t_i(isect_t), .cand_u_i(isect_u), .cand_v_i(isect_v),
     .cand_take_o(), .leaf_idx_i(node_tag), .leaf_t_o(leaf_best_t), .exit_idx_i(exit_idx),
     .exit_hit_o(exit_hit), .exit_t_o(exit_best_t), .out_idx_i(out_idx), .out_hit_o(out_hit),
-    .out_prim_o(out_prim), .out_t_o(out_t), .out_u_o(out_u), .out_v_o(out_v)
+    .out_prim_o(out_prim), .out_t_o(out_t), .out_re_i(out_fire), .out_u_o(out_u), .out_v_o(out_v)
   );
 
   // ------------------------------------------------------------ caches and memory
@@ -374,15 +374,23 @@ module rt_core #(
   );
 
   // ------------------------------------------------------------ hit out
-  logic out_valid, out_ready, out_fire;
+  logic out_valid, out_ready;
   rt_rr_arb #(.N(Threads)) u_out_arb (
     .clk_i, .rst_ni, .req_i(is_done), .ack_i(out_ready), .valid_o(out_valid), .idx_o(out_idx)
   );
   assign out_fire = out_valid && out_ready;
+  // A thread's ray id is written when it takes a ray and read when its hit
+  // leaves: never in one cycle (a free thread is not a finished one).
+  logic [RayIdWidth-1:0] out_ray_id;
+  rt_ram_1r1w #(.Words(Threads), .Width(RayIdWidth)) u_ray_id (
+    .clk_i, .we_i(ray_fire), .waddr_i(alloc_idx), .wdata_i(ray_id_i),
+    .re_i(out_fire), .raddr_i(out_idx), .rdata_o(out_ray_id)
+  );
   rt_hit_out #(.E(E), .M(M), .RayIdWidth(RayIdWidth), .PrimWidth(TriIdxWidth)) u_hit_out (
-    .clk_i, .rst_ni, .in_valid_i(out_valid), .in_ready_o(out_ready), .in_ray_id_i(ray_id_q[out_idx]),
+    .clk_i, .rst_ni, .in_valid_i(out_valid), .in_ready_o(out_ready),
     .in_hit_i(out_hit), .in_prim_i(out_prim), .in_t_i(out_t), .in_t_scale_i(t_scale_q[out_idx]),
-    .in_u_i(out_u), .in_v_i(out_v), .in_overflow_i(ovf_q[out_idx]),
+    .in_overflow_i(ovf_q[out_idx]), .rd_ray_id_i(out_ray_id), .rd_u_i(out_u),
+    .rd_v_i(out_v),
     .hit_valid_o, .hit_ready_i, .hit_ray_id_o, .hit_o, .hit_prim_o, .hit_t_o, .hit_u_o, .hit_v_o, .hit_overflow_o
   );
 
@@ -405,10 +413,7 @@ module rt_core #(
   // (rt_thread_fsm checks), so one thread's events never collide: each event
   // writes its thread's fields through one write port of the table.
   always_ff @(posedge clk_i) begin
-    if (ray_fire) begin
-      ray_id_q[alloc_idx] <= ray_id_i;
-      any_q[alloc_idx] <= ray_any_i;
-    end
+    if (ray_fire) any_q[alloc_idx] <= ray_any_i;
     if (setup_fire) begin
       t_scale_q[setup_tag] <= setup_t_scale;
       ovf_q[setup_tag] <= 1'b0;

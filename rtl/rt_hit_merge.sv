@@ -10,9 +10,15 @@
 // decided in the cycle it arrives (one fp_cmp without stages against the
 // thread's best t) and seen from the next cycle on. An init and a result for
 // the same thread in one cycle: the init wins (rt_core never has both). Three
-// read ports, combinational, give a thread's closest hit: its t (the tmax of
-// a leaf that starts), hit and t (the leaf exit's rule) and the whole record
-// (the hit output).
+// read ports give a thread's closest hit: its t (the tmax of a leaf that
+// starts) and its hit and t (the leaf exit's rule), combinational, and the
+// whole record (the hit output): hit, id and t combinational, u and v from a
+// memory with an SRAM's ports (rt_ram_1r1w), read at out_idx_i when out_re_i
+// and shown from the next cycle on until the next read. u and v are written
+// only by a result that is taken (an init leaves them: they mean something
+// only while the thread has a hit); a read of a thread that a result updates
+// in the same cycle would give the old u and v, which rt_core never does (the
+// hit output reads a thread that has finished its tests; asserted below).
 `default_nettype none
 // Unused outputs of fp_cmp are left open on purpose.
 /* verilator lint_off PINCONNECTEMPTY */
@@ -50,12 +56,13 @@ module rt_hit_merge #(
   output logic                 out_hit_o,
   output logic [PrimWidth-1:0] out_prim_o,
   output logic [W-1:0]         out_t_o,
-  output logic [W-1:0]         out_u_o,
+  input  logic                 out_re_i,  // read out_idx_i's u and v
+  output logic [W-1:0]         out_u_o,   // of the last read, from the next cycle on
   output logic [W-1:0]         out_v_o
 );
 
   logic [Threads-1:0]   hit_q;
-  logic [W-1:0]         t_q [Threads], u_q [Threads], v_q [Threads];
+  logic [W-1:0]         t_q [Threads];
   logic [PrimWidth-1:0] prim_q [Threads];
 
   logic t_lt_best, t_eq_best;
@@ -73,23 +80,32 @@ module rt_hit_merge #(
     if (init_i) begin
       hit_q[init_idx_i] <= 1'b0;
       t_q[init_idx_i] <= init_t_i;
-      u_q[init_idx_i] <= '0;
-      v_q[init_idx_i] <= '0;
       prim_q[init_idx_i] <= '1;
     end
     if (cand_write) begin
       hit_q[cand_idx_i] <= 1'b1;
       t_q[cand_idx_i] <= cand_t_i;
-      u_q[cand_idx_i] <= cand_u_i;
-      v_q[cand_idx_i] <= cand_v_i;
       prim_q[cand_idx_i] <= cand_prim_i;
     end
   end
 
   assign leaf_t_o = t_q[leaf_idx_i];
   assign {exit_hit_o, exit_t_o} = {hit_q[exit_idx_i], t_q[exit_idx_i]};
-  assign {out_hit_o, out_prim_o, out_t_o, out_u_o, out_v_o} =
-      {hit_q[out_idx_i], prim_q[out_idx_i], t_q[out_idx_i], u_q[out_idx_i], v_q[out_idx_i]};
+  assign {out_hit_o, out_prim_o, out_t_o} = {hit_q[out_idx_i], prim_q[out_idx_i], t_q[out_idx_i]};
+
+  rt_ram_1r1w #(.Words(Threads), .Width(2 * W)) u_uv (
+    .clk_i, .we_i(cand_write), .waddr_i(cand_idx_i), .wdata_i({cand_u_i, cand_v_i}),
+    .re_i(out_re_i), .raddr_i(out_idx_i), .rdata_o({out_u_o, out_v_o})
+  );
+
+`ifndef SYNTHESIS
+  always_ff @(posedge clk_i) begin
+    if (rst_ni && out_re_i && cand_write) begin
+      assert (cand_idx_i != out_idx_i)
+      else $error("rt_hit_merge: thread %0d's u, v read in the cycle a result updates them", out_idx_i);
+    end
+  end
+`endif
 
 endmodule
 

@@ -10,6 +10,11 @@
 // the held one leaves (in_ready_o = !hit_valid_o || hit_ready_i). The input
 // may change while not taken (the core offers whichever finished ray its
 // arbiter picks); the output stream follows picorv32's rule (checked).
+// The ray id, u and v are not taken from the input: rt_core keeps them in
+// memories with an SRAM's registered read, read at the ray taken in the cycle
+// it is taken (in_valid_i && in_ready_o) and shown from the next cycle until
+// the next read (rd_ray_id_i, rd_u_i, rd_v_i): the memories' read registers
+// are the record's ray id, u and v.
 `default_nettype none
 
 module rt_hit_out #(
@@ -23,14 +28,14 @@ module rt_hit_out #(
   input  logic                  rst_ni,
   input  logic                  in_valid_i,
   output logic                  in_ready_o,
-  input  logic [RayIdWidth-1:0] in_ray_id_i,
   input  logic                  in_hit_i,
   input  logic [PrimWidth-1:0]  in_prim_i,
   input  logic [W-1:0]          in_t_i,      // along the framed ray
   input  logic signed [kdrt_pkg::TScaleWidth-1:0] in_t_scale_i,  // k: world t = t * 2^k
-  input  logic [W-1:0]          in_u_i,
-  input  logic [W-1:0]          in_v_i,
   input  logic                  in_overflow_i,
+  input  logic [RayIdWidth-1:0] rd_ray_id_i,  // the ray id, u, v read at the last record taken
+  input  logic [W-1:0]          rd_u_i,
+  input  logic [W-1:0]          rd_v_i,
   output logic                  hit_valid_o,
   input  logic                  hit_ready_i,
   output logic [RayIdWidth-1:0] hit_ray_id_o,
@@ -50,8 +55,11 @@ module rt_hit_out #(
   fp_ldexp #(.E(8), .M(23), .NW(kdrt_pkg::TScaleWidth)) u_world_t (
     .a_i(wide_t), .n_i(in_t_scale_i), .y_o(world_t)
   );
-  fp_to_f32 #(.E(E), .M(M)) u_wide_u (.a_i(in_u_i), .f32_o(wide_u));
-  fp_to_f32 #(.E(E), .M(M)) u_wide_v (.a_i(in_v_i), .f32_o(wide_v));
+  fp_to_f32 #(.E(E), .M(M)) u_wide_u (.a_i(rd_u_i), .f32_o(wide_u));
+  fp_to_f32 #(.E(E), .M(M)) u_wide_v (.a_i(rd_v_i), .f32_o(wide_v));
+  assign hit_ray_id_o = rd_ray_id_i;
+  assign hit_u_o = hit_o ? wide_u : 32'h0;
+  assign hit_v_o = hit_o ? wide_v : 32'h0;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -64,12 +72,9 @@ module rt_hit_out #(
 
   always_ff @(posedge clk_i) begin
     if (in_fire) begin
-      hit_ray_id_o <= in_ray_id_i;
       hit_o <= in_hit_i;
       hit_prim_o <= in_hit_i ? 32'(in_prim_i) : 32'hFFFF_FFFF;
       hit_t_o <= in_hit_i ? world_t : 32'h7F80_0000;
-      hit_u_o <= in_hit_i ? wide_u : 32'h0;
-      hit_v_o <= in_hit_i ? wide_v : 32'h0;
       hit_overflow_o <= in_overflow_i;
     end
   end

@@ -5,7 +5,9 @@
 // (fp::Lt, fp::Eq):
 //   take = hit && (t < best.t || (t == best.t && (no hit yet || id < best.id)))
 // checked on cand_take_o in the cycle of the result and on the three read
-// ports (random threads) every cycle; an init and a result for the same
+// ports (random threads) every cycle: hit, t and id as they are, u and v
+// (a memory's registered read) in the cycle after a read, of a thread that
+// had a hit when it was read, held while no read follows; an init and a result for the same
 // thread in one cycle: the init wins. Values come from a small pool of random
 // encodings of the format (with zeros, infinities and NaNs) and ids from a
 // small range, so that ties in t and in the id are frequent; inits and
@@ -59,6 +61,9 @@ bool Run(Format f, uint64_t cycles) {
   std::array<Best, kThreads> model;
   std::array<bool, kThreads> known{};  // the thread has had an init since reset
   std::array<uint32_t, 5> pool{};
+  bool uv_shown = false;  // out_u_o, out_v_o show a read of a thread with a hit
+  Best uv_read;
+  uint64_t uv_checked = 0;
   double p_init = 0.1, p_cand = 0.5, p_hit = 0.7;
   uint64_t results = 0, by_lt = 0, by_id = 0, by_first = 0, kept = 0, collisions = 0;
   for (uint64_t cycle = 0; cycle < cycles; ++cycle) {
@@ -96,6 +101,9 @@ bool Run(Format f, uint64_t cycles) {
     dut.leaf_idx_i = li;
     dut.exit_idx_i = ei;
     dut.out_idx_i = oi;
+    // rt_core never reads a thread's u, v in the cycle a result updates them.
+    const bool out_re = rng.Chance(0.5) && !(cand && ci == oi);
+    dut.out_re_i = out_re;
     sim.Settle();
 
     bool take = false;
@@ -116,8 +124,11 @@ bool Run(Format f, uint64_t cycles) {
     if (known[ei]) bad = bad || static_cast<bool>(dut.exit_hit_o) != model[ei].hit || dut.exit_t_o != model[ei].t;
     if (known[oi]) {
       const Best& b = model[oi];
-      bad = bad || static_cast<bool>(dut.out_hit_o) != b.hit || dut.out_prim_o != b.prim || dut.out_t_o != b.t ||
-            dut.out_u_o != b.u || dut.out_v_o != b.v;
+      bad = bad || static_cast<bool>(dut.out_hit_o) != b.hit || dut.out_prim_o != b.prim || dut.out_t_o != b.t;
+    }
+    if (uv_shown) {
+      bad = bad || dut.out_u_o != uv_read.u || dut.out_v_o != uv_read.v;
+      ++uv_checked;
     }
     if (bad) {
       std::printf("rt_hit_merge %s: FAIL at cycle %llu\n", f.Name().c_str(), static_cast<unsigned long long>(cycle));
@@ -132,10 +143,14 @@ bool Run(Format f, uint64_t cycles) {
       std::printf("  out port thread %u: hit %d id 0x%02x t 0x%08x u 0x%08x v 0x%08x (model %d 0x%02x 0x%08x "
                   "0x%08x 0x%08x)\n",
                   oi, dut.out_hit_o, dut.out_prim_o, dut.out_t_o, dut.out_u_o, dut.out_v_o, model[oi].hit,
-                  model[oi].prim, model[oi].t, model[oi].u, model[oi].v);
+                  model[oi].prim, model[oi].t, uv_read.u, uv_read.v);
       return false;
     }
     sim.Tick();
+    if (out_re) {
+      uv_shown = known[oi] && model[oi].hit;
+      uv_read = model[oi];
+    }
     if (init) {
       model[ii] = Best{false, init_t, 0, 0, kPrimMask};
       known[ii] = true;
@@ -143,12 +158,12 @@ bool Run(Format f, uint64_t cycles) {
     }
     if (take && !(init && ci == ii)) model[ci] = c;
   }
-  if (by_lt == 0 || by_id == 0 || by_first == 0 || kept == 0 || collisions == 0) {
+  if (by_lt == 0 || by_id == 0 || by_first == 0 || kept == 0 || collisions == 0 || uv_checked == 0) {
     std::printf("rt_hit_merge %s: FAIL: the traffic missed a case (taken by t %llu, by id %llu, first hit at "
-                "equal t %llu; kept %llu; init and take on one thread %llu)\n",
+                "equal t %llu; kept %llu; init and take on one thread %llu; u, v read %llu)\n",
                 f.Name().c_str(), static_cast<unsigned long long>(by_lt), static_cast<unsigned long long>(by_id),
                 static_cast<unsigned long long>(by_first), static_cast<unsigned long long>(kept),
-                static_cast<unsigned long long>(collisions));
+                static_cast<unsigned long long>(collisions), static_cast<unsigned long long>(uv_checked));
     return false;
   }
   std::printf("rt_hit_merge %s: PASS (%llu cycles, %llu hit results: taken by t %llu, by id %llu, first hit at "

@@ -8,7 +8,9 @@
 // core's arbiter may switch rays); hit_ready_i is random in regimes. Values
 // are random encodings of the format, with zeros, infinities and NaNs mixed
 // in; k covers the whole range a ray can have (|k| <= 383) and beyond to the
-// port's limits.
+// port's limits. The ray id, u and v come from rt_core's memories, read in
+// the cycle a record is taken and shown from the next cycle until the next
+// read: the bench drives them so.
 #include <array>
 #include <cstdio>
 
@@ -92,13 +94,10 @@ bool Run(Format f, uint64_t cycles) {
                      RandomValue(f, rng), rng.Chance(0.6), rng.Chance(0.05), RandomTScale(rng)};
     }
     dut.in_valid_i = offering;
-    dut.in_ray_id_i = offer.ray_id;
     dut.in_hit_i = offer.hit;
     dut.in_prim_i = offer.prim;
     dut.in_t_i = offer.t;
     dut.in_t_scale_i = static_cast<uint32_t>(offer.t_scale) & ((1u << kTScaleWidth) - 1);
-    dut.in_u_i = offer.u;
-    dut.in_v_i = offer.v;
     dut.in_overflow_i = offer.overflow;
     dut.hit_ready_i = rng.Chance(p_ready);
     sim.Settle();
@@ -122,6 +121,9 @@ bool Run(Format f, uint64_t cycles) {
     delivered += out_fire;
     if (out_fire) held = false;
     if (in_fire) {
+      dut.rd_ray_id_i = offer.ray_id;  // the memories' read of the taken ray
+      dut.rd_u_i = offer.u;
+      dut.rd_v_i = offer.v;
       reg = Widen(f, offer);
       held = true;
       offering = false;
