@@ -11,6 +11,7 @@
 
 #include "sim/ray_queue.h"
 #include "sim/ring.h"
+#include "sim/unit_latency.h"
 #include "trace/tracer.h"
 
 namespace kdrt::sim {
@@ -554,16 +555,12 @@ class FastCore {
         clip_pipe_(threads_, true), trav_pipe_(threads_, true), jobs_(threads_, true),
         stream_(spec.config[kListStream] != 0), prefetch_(static_cast<uint32_t>(spec.config[kListPrefetch])), lists_(spec.image->lists()), header_(spec.image->header()) {
     const CoreConfig& cfg = spec.config;
-    const int m = cfg.Format().m;
-    // Ray setup and clip (rt_ray_setup M + 8, rt_clip_unit 11) and the
-    // traversal step (8); a wider traversal (TravE, TravM) has its reciprocal
-    // divider (3 + TravM + 4) and one more stage in clip and traversal step
-    // (rounding the cell ends outwards into the core's format).
-    const bool mixed = cfg.TravFormat() != cfg.Format();
-    const int setup = std::max(m + 8, mixed ? cfg.TravFormat().m + 7 : 0);
-    lat_clip_ = static_cast<uint64_t>(setup) + 11 + (mixed ? 1 : 0);
-    lat_trav_ = 8 + (mixed ? 1 : 0);
-    lat_isect_ = static_cast<uint64_t>(m) + 34;
+    // Ray setup followed by the clip, the traversal step and the triangle
+    // test: the units' latencies as their benches check them.
+    const fp::Format f = cfg.Format(), trav = cfg.TravFormat();
+    lat_clip_ = latency::RaySetup(f, trav) + latency::Clip(f, trav);
+    lat_trav_ = latency::Trav(f, trav);
+    lat_isect_ = latency::Isect(f);
     // The pipelines take at most one thread a cycle: setup/clip and traversal
     // hold each thread at most once, intersection at most one test a cycle of
     // its latency.

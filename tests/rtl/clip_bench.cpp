@@ -22,6 +22,7 @@
 #include "Vrt_clip_unit_fp16t32.h"
 #include "Vrt_clip_unit_fp24.h"
 #include "Vrt_clip_unit_fp32.h"
+#include "sim/unit_latency.h"
 #include "tests/rtl/isect_bench_util.h"
 #include "tests/rtl/stream_bench.h"
 #include "trace/traversal.h"
@@ -173,11 +174,7 @@ In RandomInput(const SoftArith& at, const SoftArith& ai, std::mt19937& rng, uint
   return in;
 }
 
-unsigned DocumentedLatency(Format f, Format trav) {
-  // FpFromF32Latency + FpAddLatency + FpMulLatency + 3 (the chain), and one
-  // more FpFromF32Latency (fp_round_out) for a wider traversal.
-  return 1 + 4 + 3 + 3 + (f != trav ? 1 : 0);
-}
+unsigned DocumentedLatency(Format f, Format trav) { return sim::latency::Clip(f, trav); }
 
 template <class Dut>
 bool RunPreset(Format f, Format trav, uint64_t count) {

@@ -17,17 +17,18 @@
 
 #include "fp/format.h"
 #include "sim/sim_ctrl.h"
+#include "sim/unit_latency.h"
 #include "tests/fp/fp_vectors.h"
 
 namespace kdrt::fp::bench {
 
-// The documented latencies (docs/number-formats.md, rtl/kdrt_fp_pkg.sv); the
-// benches measure each unit's and compare.
+// The latencies the fast model assumes (sim/unit_latency.h); the benches
+// measure each unit's and compare.
 namespace kdrt_fp_latency {
-inline constexpr unsigned kAdd = 4;
-inline constexpr unsigned kMul = 3;
-inline constexpr unsigned kFromF32 = 1;
-inline unsigned Div(Format f) { return static_cast<unsigned>(f.m) + 4; }
+inline constexpr unsigned kAdd = sim::latency::kFpAdd;
+inline constexpr unsigned kMul = sim::latency::kFpMul;
+inline constexpr unsigned kFromF32 = sim::latency::kFpFromF32;
+inline unsigned Div(Format f) { return sim::latency::FpDiv(f); }
 }  // namespace kdrt_fp_latency
 
 struct Vec {

@@ -21,6 +21,7 @@
 #include "Vrt_isect_unit_fp16.h"
 #include "Vrt_isect_unit_fp24.h"
 #include "Vrt_isect_unit_fp32.h"
+#include "sim/unit_latency.h"
 #include "tests/rtl/isect_bench_util.h"
 #include "tests/rtl/stream_bench.h"
 #include "trace/intersect.h"
@@ -35,9 +36,7 @@ using Setup = RaySetup<SoftArith>;
 
 constexpr uint32_t kTagMask = 0xFF;  // TagWidth = 8, the unit's default
 
-// docs/isect-unit.md: 34 + M enabled cycles with the fp unit latencies of
-// rtl/kdrt_fp_pkg.sv (add 4, mul 3, from_f32 1, div M + 4, compare 1).
-unsigned DocumentedLatency(Format f) { return 34 + static_cast<unsigned>(f.m); }
+unsigned DocumentedLatency(Format f) { return sim::latency::Isect(f); }
 
 struct Case {
   Ray ray;

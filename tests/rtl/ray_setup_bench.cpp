@@ -29,6 +29,7 @@
 #include "Vrt_ray_setup_fp16t32.h"
 #include "Vrt_ray_setup_fp24.h"
 #include "Vrt_ray_setup_fp32.h"
+#include "sim/unit_latency.h"
 #include "tests/rtl/isect_bench_util.h"
 #include "tests/rtl/stream_bench.h"
 #include "trace/frame.h"
@@ -43,13 +44,7 @@ using fp::SoftArith;
 
 constexpr uint32_t kTagMask = 0xFF;
 
-// docs/isect-unit.md: frame 2, load 1, compare 1, divide M + 4. A wider
-// traversal's reciprocals (frame 2, load 1, divide TravM + 4) may take
-// longer (rtl/rt_ray_setup.sv).
-unsigned DocumentedLatency(Format f, Format trav) {
-  const unsigned test = 8 + static_cast<unsigned>(f.m);
-  return f == trav ? test : std::max(test, 3 + static_cast<unsigned>(trav.m) + 4);
-}
+unsigned DocumentedLatency(Format f, Format trav) { return sim::latency::RaySetup(f, trav); }
 
 constexpr int kScaleWidth = 9;    // kdrt_pkg::FrameScaleWidth
 constexpr int kTScaleWidth = 10;  // kdrt_pkg::TScaleWidth
