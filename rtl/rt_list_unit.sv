@@ -20,6 +20,10 @@
 // oldest job). rt_mem_system sends these to the list cache's prefetch port
 // (rt_cache PrefetchPort), so a job's lines are fetched while the jobs
 // before it are requested.
+//
+// The queue (rt_fifo_ram) and the prefetcher's copy of the jobs' first entry
+// and count (rt_ram_1r1w, read at the next cycle's prefetch job, forwarding
+// a job pushed in the cycle it is read) are memories with an SRAM's ports.
 `default_nettype none
 
 module rt_list_unit #(
@@ -61,7 +65,7 @@ module rt_list_unit #(
   logic [TagWidth-1:0]   queued_tag;
   logic [31:0]           queued_first;
   logic [CountWidth-1:0] queued_count;
-  rt_fifo #(.Width(TagWidth + 32 + CountWidth), .Depth(Jobs)) u_jobs (
+  rt_fifo_ram #(.Width(TagWidth + 32 + CountWidth), .Depth(Jobs)) u_jobs (
     .clk_i, .rst_ni,
     .in_valid_i (job_valid_i),
     .in_ready_o (job_ready_o),
@@ -114,14 +118,14 @@ module rt_list_unit #(
     // pops in order: its write and read positions are counted here too).
     localparam int unsigned JobW = (Jobs > 1) ? $clog2(Jobs) : 1;
     localparam int unsigned NumW = $clog2(Jobs + 1);
-    logic [31:0]           first_q [Jobs];
-    logic [CountWidth-1:0] count_q [Jobs];
-    logic [JobW-1:0]       wr_q, rd_q;
+    logic [AddrWidth-1:0]  pf_first;
+    logic [CountWidth-1:0] pf_count;
+    logic [JobW-1:0]       wr_q, rd_q, rd_d;
     logic [NumW-1:0]       queued_q;  // jobs in the FIFO
-    logic [NumW-1:0]       pf_off_q;  // the prefetcher's job: rd_q + pf_off_q
+    logic [NumW-1:0]       pf_off_q, pf_off_d;  // the prefetcher's job: rd_q + pf_off_q
     logic [CountWidth-1:0] pf_k_q;    // its next entry
     logic                  push, pf_fire, pf_job_done;
-    logic [JobW-1:0]       pf_idx;
+    logic [JobW-1:0]       pf_idx_next;
     logic [AddrWidth-1:0]  pf_entry_addr;
     logic [CountWidth-1:0] pf_k_next;
     logic [LineOffW-EntryShift:0] pf_in_line;
@@ -129,15 +133,19 @@ module rt_list_unit #(
       wrap_inc = (32'(p) == Jobs - 1) ? '0 : p + 1'b1;
     endfunction
     assign push = job_valid_i && job_ready_o;
-    assign pf_idx = JobW'((32'(rd_q) + 32'(pf_off_q)) % Jobs);
     assign pf_valid_o = pf_off_q < queued_q && 32'(pf_off_q) < ListPrefetch;
-    assign pf_entry_addr = list_base_i + (AddrWidth'(first_q[pf_idx]) << EntryShift) +
+    assign pf_entry_addr = list_base_i + (AddrWidth'(pf_first) << EntryShift) +
                            (AddrWidth'(pf_k_q) << EntryShift);
     assign pf_addr_o = {pf_entry_addr[AddrWidth-1:LineOffW], {LineOffW{1'b0}}};
     assign pf_in_line = (LineOffW - EntryShift + 1)'((LineBytes - 32'(pf_entry_addr[LineOffW-1:0])) >> EntryShift);
     assign pf_k_next = pf_k_q + CountWidth'(pf_in_line);
     assign pf_fire = pf_valid_o && pf_ready_i;
-    assign pf_job_done = pf_k_next >= count_q[pf_idx];
+    assign pf_job_done = pf_k_next >= pf_count;
+    // The walker taking the prefetcher's job moves it on to the next oldest.
+    assign rd_d = queued_pop ? wrap_inc(rd_q) : rd_q;
+    assign pf_off_d = (queued_pop && pf_off_q == '0) ? pf_off_q
+                                                    : pf_off_q + NumW'(pf_fire && pf_job_done) - NumW'(queued_pop);
+    assign pf_idx_next = JobW'((32'(rd_d) + 32'(pf_off_d)) % Jobs);
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         wr_q <= '0;
@@ -149,21 +157,27 @@ module rt_list_unit #(
         if (push) wr_q <= wrap_inc(wr_q);
         if (queued_pop) rd_q <= wrap_inc(rd_q);
         queued_q <= queued_q + NumW'(push) - NumW'(queued_pop);
+        pf_off_q <= pf_off_d;
         if (queued_pop && pf_off_q == '0) begin
-          // The walker took the prefetcher's job: on to the next oldest.
           pf_k_q <= '0;
-        end else begin
-          pf_off_q <= pf_off_q + NumW'(pf_fire && pf_job_done) - NumW'(queued_pop);
-          if (pf_fire) pf_k_q <= pf_job_done ? '0 : pf_k_next;
+        end else if (pf_fire) begin
+          pf_k_q <= pf_job_done ? '0 : pf_k_next;
         end
       end
     end
+    // The job at the next cycle's pf_idx, read a cycle ahead; a job pushed
+    // to that position in this cycle is forwarded.
+    logic                            pf_fwd_q;
+    logic [AddrWidth+CountWidth-1:0] pf_fwd_data_q, pf_rdata;
+    rt_ram_1r1w #(.Words(Jobs), .Width(AddrWidth + CountWidth)) u_pf_jobs (
+      .clk_i, .we_i(push), .waddr_i(wr_q), .wdata_i({AddrWidth'(job_first_i), job_count_i}),
+      .re_i(1'b1), .raddr_i(pf_idx_next), .rdata_o(pf_rdata)
+    );
     always_ff @(posedge clk_i) begin
-      if (push) begin
-        first_q[wr_q] <= job_first_i;
-        count_q[wr_q] <= job_count_i;
-      end
+      pf_fwd_q <= push && wr_q == pf_idx_next;
+      if (push) pf_fwd_data_q <= {AddrWidth'(job_first_i), job_count_i};
     end
+    assign {pf_first, pf_count} = pf_fwd_q ? pf_fwd_data_q : pf_rdata;
   end else begin : g_no_prefetch
     assign pf_valid_o = 1'b0;
     assign pf_addr_o = '0;

@@ -57,9 +57,11 @@ FLOW_VERSION = "1"
 # scripts/synth.sh), the memories of rt_ram_1r1w: the stacks' (in
 # rt_leaf_exit, 360,448 bits in the default core, far beyond what flip-flops
 # can hold), the miss registers' line buffers and requests (in rt_cache) and
-# the thread table's ray and ray-id memories (instances of rt_core's own) and
-# the hit records' u, v (in rt_hit_merge).
-SRAM_UNITS = {"rt_mem_system", "rt_cache", "rt_leaf_exit", "rt_thread_stack", "rt_ram_1r1w", "rt_hit_merge"}
+# the thread table's ray and ray-id memories (instances of rt_core's own),
+# the hit records' u, v (in rt_hit_merge) and the leaf-job queue and its
+# prefetcher's copy (in rt_list_unit).
+SRAM_UNITS = {"rt_mem_system", "rt_cache", "rt_leaf_exit", "rt_thread_stack", "rt_ram_1r1w", "rt_hit_merge",
+              "rt_list_unit", "rt_fifo_ram"}
 # The size parameters an estimate scales, in this order of preference.
 SCALE_PARAMS = ("Threads", "Jobs", "N", "CacheMshrs")
 

@@ -1,4 +1,5 @@
-// Verilator bench of rtl/rt_fifo.sv against a C++ queue of the same depth,
+// Verilator bench of rtl/rt_fifo.sv (and, built with KDRT_FIFO_RAM, of
+// rtl/rt_fifo_ram.sv, which must behave the same) against a C++ queue of the same depth,
 // cycle by cycle: in_ready_o is high exactly when the queue has room,
 // out_valid_o exactly when it holds an entry written in an earlier cycle,
 // out_data_o is the oldest entry, and a push and a pop may share a cycle.
@@ -9,9 +10,15 @@
 #include <cstdio>
 #include <deque>
 
+#ifdef KDRT_FIFO_RAM
+#include "Vrt_fifo_ram_d1.h"
+#include "Vrt_fifo_ram_d3.h"
+#include "Vrt_fifo_ram_d4.h"
+#else
 #include "Vrt_fifo_d1.h"
 #include "Vrt_fifo_d3.h"
 #include "Vrt_fifo_d4.h"
+#endif
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -21,6 +28,17 @@ namespace {
 using sim::SimCtrl;
 
 constexpr uint32_t kMask = 0xFFFF;  // Width = 16, as verilated
+#ifdef KDRT_FIFO_RAM
+constexpr const char* kUnit = "rt_fifo_ram";
+using Fifo1 = Vrt_fifo_ram_d1;
+using Fifo3 = Vrt_fifo_ram_d3;
+using Fifo4 = Vrt_fifo_ram_d4;
+#else
+constexpr const char* kUnit = "rt_fifo";
+using Fifo1 = Vrt_fifo_d1;
+using Fifo3 = Vrt_fifo_d3;
+using Fifo4 = Vrt_fifo_d4;
+#endif
 
 template <class Dut>
 bool Run(unsigned depth, uint64_t cycles) {
@@ -36,7 +54,7 @@ bool Run(unsigned depth, uint64_t cycles) {
   double p_offer = 0.5, p_ready = 0.5;
   uint64_t pushes = 0, pops = 0, full_cycles = 0;
   auto fail = [&](const char* what, uint64_t cycle) {
-    std::printf("rt_fifo depth %u: FAIL at cycle %llu: %s (model holds %zu)\n", depth,
+    std::printf("%s depth %u: FAIL at cycle %llu: %s (model holds %zu)\n", kUnit, depth,
                 static_cast<unsigned long long>(cycle), what, model.size());
     return false;
   };
@@ -71,10 +89,10 @@ bool Run(unsigned depth, uint64_t cycles) {
     }
   }
   if (full_cycles == 0 || pops == 0) {
-    std::printf("rt_fifo depth %u: FAIL: the traffic never filled the queue or never emptied it\n", depth);
+    std::printf("%s depth %u: FAIL: the traffic never filled the queue or never emptied it\n", kUnit, depth);
     return false;
   }
-  std::printf("rt_fifo depth %u: PASS (%llu cycles, %llu pushes, %llu pops, full in %llu cycles)\n", depth,
+  std::printf("%s depth %u: PASS (%llu cycles, %llu pushes, %llu pops, full in %llu cycles)\n", kUnit, depth,
               static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(pushes),
               static_cast<unsigned long long>(pops), static_cast<unsigned long long>(full_cycles));
   return true;
@@ -88,9 +106,9 @@ int main(int argc, char** argv) {
   Verilated::commandArgs(argc, argv);
   const uint64_t cycles = LongRun() ? 10000000 : 1000000;
   // Depths must match the verilated parameters (tests/rtl/CMakeLists.txt).
-  bool ok = Run<Vrt_fifo_d1>(1, cycles);
-  ok = Run<Vrt_fifo_d3>(3, cycles) && ok;
-  ok = Run<Vrt_fifo_d4>(4, cycles) && ok;
+  bool ok = Run<Fifo1>(1, cycles);
+  ok = Run<Fifo3>(3, cycles) && ok;
+  ok = Run<Fifo4>(4, cycles) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }
