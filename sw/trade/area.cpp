@@ -518,9 +518,7 @@ Area Compute(const fp::Format& f, const AreaOptions& options, bool force_estimat
 
 }  // namespace
 
-bool KeepsSram(const std::string& unit) {
-  return unit == "rt_mem_system" || unit == "rt_leaf_exit" || unit == "rt_hit_merge" || unit == "rt_list_unit";
-}
+bool KeepsSram(const std::string& unit) { return unit == "rt_mem_system"; }
 
 std::string RtlHash(const std::string& source_dir) {
   const fs::path rtl = fs::path(source_dir) / "rtl";

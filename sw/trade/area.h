@@ -28,7 +28,7 @@ struct UnitArea {
   int64_t cells = 0;
   int64_t flip_flops = 0;
   int depth = 0;
-  int64_t sram_bits = 0;  // memories kept as SRAM macros, not in cells (KeepsSram)
+  int64_t sram_bits = 0;  // line arrays kept as SRAM macros, not in cells (rt_mem_system)
   std::string source;   // "cache", "yosys" or "estimate"
   double residual = 0;  // estimate only: the fit's max relative residual on the presets
 };
@@ -85,9 +85,9 @@ Area CoreArea(const fp::Format& f, const AreaOptions& options);
 // model, and for checking it against the presets.
 Area EstimateCoreArea(const fp::Format& f, const AreaOptions& options);
 
-// The units whose memories (the caches' line arrays, rt_ram_1r1w's) are
-// synthesized as SRAM macros (synth-unit.sh --sram): their cells are the
-// logic around the memories, and the memories' bits are counted apart. scripts/synth.sh names the same units
+// The units whose caches' line arrays are synthesized as SRAM macros
+// (synth-unit.sh --sram): their cells are the logic around the arrays, and
+// the arrays' bits are counted apart. scripts/synth.sh names the same units
 // in SRAM_UNITS for the table (AreaTest checks that the two agree).
 bool KeepsSram(const std::string& unit);
 
