@@ -300,6 +300,16 @@ def extrapolate(v, v1, r1, v2, r2):
         out[f] = int(round(max(r1[f], r1[f] + slope * (v - v1))))
     slope = (r1["crit_ns"] - r2["crit_ns"]) / (math.log2(v1) - math.log2(v2))
     out["crit_ns"] = round(max(r1["crit_ns"], r1["crit_ns"] + slope * (math.log2(v) - math.log2(v1))), 3)
+    # An SRAM macro's words grow with the size as well (a miss register's
+    # buffers, a thread's stack): each macro of V1 is matched by name and
+    # width with V2's, and its words extrapolated linearly like the area.
+    by_name = {(m["name"], m["width"]): m["words"] for m in r2.get("srams", [])}
+    srams = []
+    for m in r1.get("srams", []):
+        w2 = by_name.get((m["name"], m["width"]), m["words"])
+        slope = (m["words"] - w2) / (v1 - v2)
+        srams.append(dict(m, words=int(round(max(m["words"], m["words"] + slope * (v - v1))))))
+    out["srams"] = srams
     return out
 
 
@@ -423,8 +433,8 @@ def main():
             est.update(extrapolate(v, v1, r1, v2, r2))
             est["params"] = t["params"]
             method = (f"{t['result']['failed']} at {s}={v}; synthesized at {s}={v1} and {s}={v2}, area, cells "
-                      f"and flip-flops extrapolated linearly in {s}, crit_ns linearly in log2({s}), "
-                      f"path and SRAM macros of {s}={v1}")
+                      f"and flip-flops and the SRAM macros' words extrapolated linearly in {s}, crit_ns "
+                      f"linearly in log2({s}), the path of {s}={v1}")
             t["estimate"] = (est, method)
             log(f"{desc(t)}: ESTIMATED: {method}")
         d *= 2
