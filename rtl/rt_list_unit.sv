@@ -114,7 +114,7 @@ module rt_list_unit #(
 
   // ------------------------------------------------------------ prefetcher
   if (ListPrefetch > 0) begin : g_prefetch
-    // The FIFO's jobs again, at the FIFO's own positions (rt_fifo pushes and
+    // The FIFO's jobs again, at the FIFO's own positions (rt_fifo_ram pushes and
     // pops in order: its write and read positions are counted here too).
     localparam int unsigned JobW = (Jobs > 1) ? $clog2(Jobs) : 1;
     localparam int unsigned NumW = $clog2(Jobs + 1);
