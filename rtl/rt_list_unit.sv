@@ -21,7 +21,7 @@
 // (rt_cache PrefetchPort), so a job's lines are fetched while the jobs
 // before it are requested.
 //
-// The queue (rt_fifo_ram) and the prefetcher's copy of the jobs' first entry
+// The queue (rt_fifo in a memory, Ram = 1) and the prefetcher's copy of the jobs' first entry
 // and count (rt_ram_1r1w, read at the next cycle's prefetch job, forwarding
 // a job pushed in the cycle it is read) are memories with an SRAM's ports.
 `default_nettype none
@@ -65,7 +65,7 @@ module rt_list_unit #(
   logic [TagWidth-1:0]   queued_tag;
   logic [31:0]           queued_first;
   logic [CountWidth-1:0] queued_count;
-  rt_fifo_ram #(.Width(TagWidth + 32 + CountWidth), .Depth(Jobs)) u_jobs (
+  rt_fifo #(.Width(TagWidth + 32 + CountWidth), .Depth(Jobs), .Ram(1)) u_jobs (
     .clk_i, .rst_ni,
     .in_valid_i (job_valid_i),
     .in_ready_o (job_ready_o),
@@ -114,7 +114,7 @@ module rt_list_unit #(
 
   // ------------------------------------------------------------ prefetcher
   if (ListPrefetch > 0) begin : g_prefetch
-    // The FIFO's jobs again, at the FIFO's own positions (rt_fifo_ram pushes and
+    // The FIFO's jobs again, at the FIFO's own positions (rt_fifo pushes and
     // pops in order: its write and read positions are counted here too).
     localparam int unsigned JobW = (Jobs > 1) ? $clog2(Jobs) : 1;
     localparam int unsigned NumW = $clog2(Jobs + 1);

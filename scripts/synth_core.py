@@ -61,7 +61,7 @@ FLOW_VERSION = "1"
 # the hit records' u, v (in rt_hit_merge) and the leaf-job queue and its
 # prefetcher's copy (in rt_list_unit).
 SRAM_UNITS = {"rt_mem_system", "rt_cache", "rt_leaf_exit", "rt_thread_stack", "rt_ram_1r1w", "rt_hit_merge",
-              "rt_list_unit", "rt_fifo_ram"}
+              "rt_list_unit", "rt_fifo"}
 # The size parameters an estimate scales, in this order of preference.
 SCALE_PARAMS = ("Threads", "Jobs", "N", "CacheMshrs")
 

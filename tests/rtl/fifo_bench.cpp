@@ -1,24 +1,21 @@
-// Verilator bench of rtl/rt_fifo.sv (and, built with KDRT_FIFO_RAM, of
-// rtl/rt_fifo_ram.sv, which must behave the same) against a C++ queue of the same depth,
-// cycle by cycle: in_ready_o is high exactly when the queue has room,
-// out_valid_o exactly when it holds an entry written in an earlier cycle,
-// out_data_o is the oldest entry, and a push and a pop may share a cycle.
-// The producer offers in random bursts and holds each entry until it is
-// taken (picorv32's rule); the consumer applies random backpressure in
-// regimes (always ready, mostly ready, mostly stalled). Depths 1, 3 (not a
-// power of two) and 4.
+// Verilator bench of rtl/rt_fifo.sv against a C++ queue of the same depth,
+// cycle by cycle, with its entries in flip-flops (Ram = 0) and in a memory
+// (Ram = 1), each driven by the same traffic (the same seed): in_ready_o is high
+// exactly when the queue has room, out_valid_o exactly when it holds an entry
+// written in an earlier cycle, out_data_o is the oldest entry, and a push and
+// a pop may share a cycle. The producer offers in random bursts and holds
+// each entry until it is taken (picorv32's rule); the consumer applies random
+// backpressure in regimes (always ready, mostly ready, mostly stalled).
+// Depths 1, 3 (not a power of two) and 4.
 #include <cstdio>
 #include <deque>
 
-#ifdef KDRT_FIFO_RAM
-#include "Vrt_fifo_ram_d1.h"
-#include "Vrt_fifo_ram_d3.h"
-#include "Vrt_fifo_ram_d4.h"
-#else
 #include "Vrt_fifo_d1.h"
 #include "Vrt_fifo_d3.h"
 #include "Vrt_fifo_d4.h"
-#endif
+#include "Vrt_fifo_ram_d1.h"
+#include "Vrt_fifo_ram_d3.h"
+#include "Vrt_fifo_ram_d4.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -28,20 +25,18 @@ namespace {
 using sim::SimCtrl;
 
 constexpr uint32_t kMask = 0xFFFF;  // Width = 16, as verilated
-#ifdef KDRT_FIFO_RAM
-constexpr const char* kUnit = "rt_fifo_ram";
-using Fifo1 = Vrt_fifo_ram_d1;
-using Fifo3 = Vrt_fifo_ram_d3;
-using Fifo4 = Vrt_fifo_ram_d4;
-#else
-constexpr const char* kUnit = "rt_fifo";
-using Fifo1 = Vrt_fifo_d1;
-using Fifo3 = Vrt_fifo_d3;
-using Fifo4 = Vrt_fifo_d4;
-#endif
+
+// One queue's outputs against the model; nullptr when they agree.
+template <class Dut>
+const char* Check(const Dut& dut, const std::deque<uint32_t>& model, unsigned depth) {
+  if (static_cast<bool>(dut.in_ready_o) != (model.size() < depth)) return "in_ready_o";
+  if (static_cast<bool>(dut.out_valid_o) != !model.empty()) return "out_valid_o";
+  if (!model.empty() && dut.out_data_o != model.front()) return "out_data_o is not the oldest entry";
+  return nullptr;
+}
 
 template <class Dut>
-bool Run(unsigned depth, uint64_t cycles) {
+bool Run(const char* unit, unsigned depth, uint64_t cycles) {
   SimCtrl<Dut> sim;
   Dut& dut = sim.top();
   dut.in_valid_i = 0;
@@ -54,7 +49,7 @@ bool Run(unsigned depth, uint64_t cycles) {
   double p_offer = 0.5, p_ready = 0.5;
   uint64_t pushes = 0, pops = 0, full_cycles = 0;
   auto fail = [&](const char* what, uint64_t cycle) {
-    std::printf("%s depth %u: FAIL at cycle %llu: %s (model holds %zu)\n", kUnit, depth,
+    std::printf("%s depth %u: FAIL at cycle %llu: %s (model holds %zu)\n", unit, depth,
                 static_cast<unsigned long long>(cycle), what, model.size());
     return false;
   };
@@ -71,9 +66,7 @@ bool Run(unsigned depth, uint64_t cycles) {
     dut.in_data_i = offering ? pending : (rng.Bits32() & kMask);  // don't-care while not valid
     dut.out_ready_i = rng.Chance(p_ready);
     sim.Settle();
-    if (static_cast<bool>(dut.in_ready_o) != (model.size() < depth)) return fail("in_ready_o", cycle);
-    if (static_cast<bool>(dut.out_valid_o) != !model.empty()) return fail("out_valid_o", cycle);
-    if (!model.empty() && dut.out_data_o != model.front()) return fail("out_data_o is not the oldest entry", cycle);
+    if (const char* what = Check(dut, model, depth)) return fail(what, cycle);
     full_cycles += model.size() == depth;
     const bool push = dut.in_valid_i && dut.in_ready_o;
     const bool pop = dut.out_valid_o && dut.out_ready_i;
@@ -89,10 +82,10 @@ bool Run(unsigned depth, uint64_t cycles) {
     }
   }
   if (full_cycles == 0 || pops == 0) {
-    std::printf("%s depth %u: FAIL: the traffic never filled the queue or never emptied it\n", kUnit, depth);
+    std::printf("%s depth %u: FAIL: the traffic never filled the queue or never emptied it\n", unit, depth);
     return false;
   }
-  std::printf("%s depth %u: PASS (%llu cycles, %llu pushes, %llu pops, full in %llu cycles)\n", kUnit, depth,
+  std::printf("%s depth %u: PASS (%llu cycles, %llu pushes, %llu pops, full in %llu cycles)\n", unit, depth,
               static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(pushes),
               static_cast<unsigned long long>(pops), static_cast<unsigned long long>(full_cycles));
   return true;
@@ -106,9 +99,14 @@ int main(int argc, char** argv) {
   Verilated::commandArgs(argc, argv);
   const uint64_t cycles = LongRun() ? 10000000 : 1000000;
   // Depths must match the verilated parameters (tests/rtl/CMakeLists.txt).
-  bool ok = Run<Fifo1>(1, cycles);
-  ok = Run<Fifo3>(3, cycles) && ok;
-  ok = Run<Fifo4>(4, cycles) && ok;
+  const char* flops = "rt_fifo (flip-flops)";
+  const char* ram = "rt_fifo (Ram = 1)";
+  bool ok = Run<Vrt_fifo_d1>(flops, 1, cycles);
+  ok = Run<Vrt_fifo_d3>(flops, 3, cycles) && ok;
+  ok = Run<Vrt_fifo_d4>(flops, 4, cycles) && ok;
+  ok = Run<Vrt_fifo_ram_d1>(ram, 1, cycles) && ok;
+  ok = Run<Vrt_fifo_ram_d3>(ram, 3, cycles) && ok;
+  ok = Run<Vrt_fifo_ram_d4>(ram, 4, cycles) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }
