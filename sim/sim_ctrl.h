@@ -108,6 +108,7 @@ class SimCtrl {
   void Settle() {
     if constexpr (kClocked) top_->clk_i = 0;
     top_->eval();
+    clock_low_evaluated_ = true;
     Dump(0);
   }
 
@@ -124,14 +125,25 @@ class SimCtrl {
   }
 
  private:
+  // The falling edge is evaluated by the next Settle() (clock low, the new
+  // inputs), not here as well: every eval() runs Verilator's logic from the
+  // inputs again, which on the core is a large part of a cycle. Only a
+  // Tick() that follows a Tick() without a Settle() between evaluates the
+  // clock low first, so that the model sees the rising edge.
   void Edge() {
     if constexpr (kClocked) {
+      if (!clock_low_evaluated_) {
+        top_->clk_i = 0;
+        top_->eval();
+      }
       top_->clk_i = 1;
       top_->eval();
+      clock_low_evaluated_ = false;
       Dump(1);
       top_->clk_i = 0;
+    } else {
+      top_->eval();
     }
-    top_->eval();
     ++phase_time_;
   }
   void Dump([[maybe_unused]] int half) {
@@ -146,6 +158,7 @@ class SimCtrl {
   std::unique_ptr<VerilatedFstC> fst_;
 #endif
   bool dump_ = true;
+  bool clock_low_evaluated_ = false;  // eval() has seen clk_i low since the last rising edge
   uint64_t cycle_ = 0;
   uint64_t phase_time_ = 0;  // cycles including reset, for waveform times
 };
