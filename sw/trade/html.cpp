@@ -3,6 +3,8 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "common/error.h"
 #include "trace/images.h"
@@ -51,7 +53,7 @@ std::string TableHtml(const TradeResult& t) {
        "<th>t p50</th><th>t p99</th><th>t max</th><th>PSNR dB</th><th>holes</th><th>nodes/ray</th>"
        "<th>leaves/ray</th><th>tests/ray</th><th>cycles/ray</th><th>efficiency</th><th>bytes/ray</th>"
        "<th>image bytes</th><th>cells</th><th>flip-flops</th><th>depth</th><th>area from</th>"
-       "<th>rays/cycle/kcell</th></tr>\n";
+       "<th>rays/cycle/kcell</th><th>Mrays/s/mm^2</th><th>28 nm</th></tr>\n";
   for (const FormatResult& r : t.formats) {
     const Accuracy& a = r.accuracy;
     const bool rec = r.format.Name() == t.recommended;
@@ -77,7 +79,10 @@ std::string TableHtml(const TradeResult& t) {
       s << "<td>-</td><td>-</td><td>-</td><td>-</td>";
     }
     const auto perf = r.RaysPerCyclePerKcell();
-    s << "<td>" << (perf ? Fmt("%.2e", *perf) : "-") << "</td></tr>\n";
+    const auto per_mm2 = r.MraysPerSPerMm2();
+    const auto per_mm2_28 = r.MraysPerSPerMm2At28nm();
+    s << "<td>" << (perf ? Fmt("%.2e", *perf) : "-") << "</td><td>" << (per_mm2 ? Fmt("%.4f", *per_mm2) : "-")
+      << "</td><td>" << (per_mm2_28 ? Fmt("%.2f", *per_mm2_28) : "-") << "</td></tr>\n";
   }
   s << "</table>\n";
   return s.str();
@@ -107,10 +112,43 @@ void WritePlots(const TradeResult& t, const std::string& dir) {
   WriteText(dir + "/cycles-vs-area.svg", ScatterSvg(cost));
 }
 
+// Error versus Mrays/s per mm^2 of the simulated core (kdrt sim's physical
+// block), for the formats that have a synthesis of their configuration;
+// written only when one has. Returns the formats left out.
+std::vector<std::string> WritePhysicalPlot(const TradeResult& t, const std::string& dir, bool* written) {
+  std::vector<std::string> left_out;
+  std::string library;
+  PlotSpec plot{"Error versus Mrays/s per mm^2", "", "rays whose hit differs from fp64 (fraction)", false, true, "0",
+                {}};
+  for (const FormatResult& r : t.formats) {
+    const auto per_mm2 = r.MraysPerSPerMm2();
+    if (!per_mm2) {
+      left_out.push_back(r.format.Name());
+      continue;
+    }
+    library = r.physical.value("library", "");
+    plot.points.push_back({*per_mm2, r.accuracy.MismatchFraction(), r.format.Name()});
+  }
+  *written = !plot.points.empty();
+  if (*written) {
+    plot.x_title = "Mrays/s per mm^2 of the simulated core (" + library + ", kdrt synth)";
+    WriteText(dir + "/error-vs-mrays-per-mm2.svg", ScatterSvg(plot));
+  }
+  return left_out;
+}
+
+std::string Joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
 }  // namespace
 
 void WriteHtml(const TradeResult& t, const std::string& dir) {
   WritePlots(t, dir);
+  bool physical_plot = false;
+  const std::vector<std::string> no_synthesis = WritePhysicalPlot(t, dir, &physical_plot);
   const bool images = t.height > 1;  // a ray file has no picture
   if (images) {
     WriteRgbImage(dir + "/fp64.png", t.width, t.height, t.truth.rgb);
@@ -145,7 +183,15 @@ void WriteHtml(const TradeResult& t, const std::string& dir) {
   for (const std::string& note : t.notes) s << "<p class=\"note\">Note: " << Esc(note) << "</p>\n";
   s << "<div style=\"overflow-x:auto\">" << TableHtml(t) << "</div>\n";
   s << "<h2>Plots</h2>\n<div class=\"plots\"><img src=\"error-vs-area.svg\" alt=\"error versus area\">"
-       "<img src=\"cycles-vs-area.svg\" alt=\"cycles versus area\"></div>\n";
+       "<img src=\"cycles-vs-area.svg\" alt=\"cycles versus area\">";
+  if (physical_plot) s << "<img src=\"error-vs-mrays-per-mm2.svg\" alt=\"error versus Mrays/s per mm^2\">";
+  s << "</div>\n";
+  if (!no_synthesis.empty()) {
+    s << "<p class=\"note\">Not in the Mrays/s per mm^2 " << (physical_plot ? "plot" : "column (and no plot)")
+      << ": " << Esc(Joined(no_synthesis))
+      << " (no synthesis of the simulated configuration: <code>kdrt synth SCENE --format F</code> with the same "
+         "options, or <code>--sim</code> was not given).</p>\n";
+  }
   if (images) {
     s << "<h2>Images</h2>\n<p>Top: each format's image; bottom: its difference against fp64 (red: the ray's hit "
          "differs (hit/miss or triangle); elsewhere the shading difference, amplified 8x).</p>\n<div class=\"images\">\n"

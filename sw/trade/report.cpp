@@ -191,7 +191,8 @@ std::string TradeCsv(const TradeResult& t) {
   s << "scene,format,E,M,bits,hitmiss_mismatch,prim_mismatch,t_rel_p50,t_rel_p99,t_rel_max,psnr_db,holes,nodes,"
        "leaves,tri_tests,cycles_per_ray,efficiency,bytes_per_ray,cells,flip_flops,depth,sram_bits,area_source,"
        "memory_bytes,"
-       "rays_per_cycle_per_kcell,warning\n";
+       "rays_per_cycle_per_kcell,area_mm2,clock_ns,mrays_per_s,mrays_per_s_per_mm2,mrays_per_s_per_mm2_28nm,"
+       "warning\n";
   s.precision(9);
   for (const FormatResult& r : t.formats) {
     const Accuracy& a = r.accuracy;
@@ -212,6 +213,15 @@ std::string TradeCsv(const TradeResult& t) {
     }
     s << r.memory_bytes << ',';
     if (auto perf = r.RaysPerCyclePerKcell()) s << *perf;
+    // The physical columns: empty without a synthesis of the simulated configuration.
+    const nlohmann::json& p = r.physical;
+    if (r.MraysPerSPerMm2()) {
+      s << ',' << p["area_mm2"]["total"].get<double>() << ',' << p["clock_ns"].get<double>() << ','
+        << p["mrays_per_s"].get<double>() << ',' << *r.MraysPerSPerMm2() << ',';
+      if (auto scaled = r.MraysPerSPerMm2At28nm()) s << *scaled;
+    } else {
+      s << ",,,,";
+    }
     std::string w = r.warning;
     for (char& c : w) c = c == '"' ? '\'' : c;
     s << ",\"" << w << "\"\n";

@@ -97,6 +97,21 @@ std::optional<double> FormatResult::RaysPerCyclePerKcell() const {
   return sim->RaysPerCycle() / (area->cells / 1000.0);
 }
 
+namespace {
+std::optional<double> PhysicalNumber(const nlohmann::json& physical, const nlohmann::json::json_pointer& at) {
+  if (!physical.is_object() || !physical.contains(at) || !physical[at].is_number()) return std::nullopt;
+  return physical[at].get<double>();
+}
+}  // namespace
+
+std::optional<double> FormatResult::MraysPerSPerMm2() const {
+  return PhysicalNumber(physical, nlohmann::json::json_pointer("/mrays_per_s_per_mm2"));
+}
+
+std::optional<double> FormatResult::MraysPerSPerMm2At28nm() const {
+  return PhysicalNumber(physical, nlohmann::json::json_pointer("/scaled/28nm/mrays_per_s_per_mm2"));
+}
+
 std::string Recommend(const std::vector<FormatResult>& formats, double target) {
   const FormatResult* best = nullptr;
   for (const FormatResult& r : formats) {

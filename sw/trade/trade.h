@@ -58,6 +58,10 @@ struct FormatResult {
   std::vector<float> rgb;  // the shaded image
   // Rays per cycle per 1,000 cells: performance per area (needs sim and area).
   std::optional<double> RaysPerCyclePerKcell() const;
+  // physical's Mrays/s per mm^2 on the cell library, and scaled to 28 nm
+  // (nullopt without a synthesis of the simulated configuration).
+  std::optional<double> MraysPerSPerMm2() const;
+  std::optional<double> MraysPerSPerMm2At28nm() const;
 };
 
 struct TradeResult {

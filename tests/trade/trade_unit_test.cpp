@@ -1,9 +1,14 @@
 // The pieces of `kdrt trade` on inputs whose answers are known by hand: the
-// accuracy statistics, the PSNR, the recommendation and the SVG plot.
+// accuracy statistics, the PSNR, the recommendation, the SVG plot and the
+// physical columns and plot.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -113,6 +118,76 @@ TEST(TradeJsonOutput, IdenticalImageIsNullPsnrAndMissingColumnsAreNull) {
   EXPECT_TRUE(j["recommended"].is_null());
   EXPECT_EQ(f["E"], 8);
   EXPECT_EQ(f["M"], 23);
+}
+
+
+// A physical block as kdrt sim writes it (sim/phys.h), with the fields the
+// trade report reads.
+nlohmann::json Physical(double area_mm2, double clock_ns, double mrays, double per_mm2, double per_mm2_28nm) {
+  return {{"library", "osu018"},
+          {"clock_ns", clock_ns},
+          {"area_mm2", {{"total", area_mm2}}},
+          {"mrays_per_s", mrays},
+          {"mrays_per_s_per_mm2", per_mm2},
+          {"scaled", {{"28nm", {{"mrays_per_s_per_mm2", per_mm2_28nm}}}}}};
+}
+
+std::string PageText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class TradePhysical : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("kdrt_trade_phys_" + std::to_string(getpid()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    t_.scene = "s";
+    t_.formats = {Row(fp::kFp32, 0, 0, 500), Row(fp::kBf16, 2, 0, 300)};
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path dir_;
+  TradeResult t_;
+};
+
+TEST_F(TradePhysical, CsvAndPlotCarryTheSynthesizedFormatsAndNameTheOthers) {
+  t_.formats[0].physical = Physical(80.5, 20.25, 1.5, 0.0186, 9.75);
+  const std::string csv = TradeCsv(t_);
+  EXPECT_NE(csv.find("rays_per_cycle_per_kcell,area_mm2,clock_ns,mrays_per_s,mrays_per_s_per_mm2,"
+                     "mrays_per_s_per_mm2_28nm,warning"),
+            std::string::npos);
+  std::istringstream rows(csv);
+  std::string header, fp32, bf16;
+  std::getline(rows, header);
+  std::getline(rows, fp32);
+  std::getline(rows, bf16);
+  EXPECT_NE(fp32.find(",80.5,20.25,1.5,0.0186,9.75,\""), std::string::npos) << fp32;
+  EXPECT_NE(bf16.find(",,,,,\""), std::string::npos) << bf16;
+
+  WriteHtml(t_, dir_.string());
+  const std::string svg = PageText(dir_ / "error-vs-mrays-per-mm2.svg");
+  size_t points = 0;
+  for (size_t at = svg.find("class=\"point\""); at != std::string::npos; at = svg.find("class=\"point\"", at + 1)) {
+    ++points;
+  }
+  EXPECT_EQ(points, 1u);  // fp32 only
+  EXPECT_NE(svg.find("osu018"), std::string::npos);
+  const std::string html = PageText(dir_ / "index.html");
+  EXPECT_NE(html.find("error-vs-mrays-per-mm2.svg"), std::string::npos);
+  EXPECT_NE(html.find("Not in the Mrays/s per mm^2 plot: bf16"), std::string::npos);
+  EXPECT_NE(html.find("<td>0.0186</td><td>9.75</td>"), std::string::npos);
+}
+
+TEST_F(TradePhysical, NoSynthesisMeansNoPlotAndASentence) {
+  WriteHtml(t_, dir_.string());
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "error-vs-mrays-per-mm2.svg"));
+  const std::string html = PageText(dir_ / "index.html");
+  EXPECT_EQ(html.find("error-vs-mrays-per-mm2.svg"), std::string::npos);
+  EXPECT_NE(html.find("Not in the Mrays/s per mm^2 column (and no plot): fp32, bf16"), std::string::npos);
+  EXPECT_FALSE(t_.formats[0].MraysPerSPerMm2().has_value());
 }
 
 }  // namespace
