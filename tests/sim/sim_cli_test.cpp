@@ -885,6 +885,22 @@ TEST_F(SimCli, SceneLargerThanTheMemoryIsRefused) {
   EXPECT_EQ(FileCount(), 0u);
 }
 
+// KDRT_SIM_MODEL_BINARY (the profile training's hook, sim/pgo_train.sh) runs
+// the binary it names in place of the model kdrt sim would pick, and a name
+// that is no file is an error that writes nothing.
+TEST_F(SimCli, ModelBinaryOverrideRunsThatBinaryOrRefuses) {
+  const std::string fp32 = std::string(KDRT_MODEL_DIR) + "/kdrt-sim-fp32";
+  const RunResult which =
+      testing::RunCommand("KDRT_SIM_MODEL_BINARY=" + fp32 + " " + KDRT_BIN + " sim gen:room:300 --which-model");
+  ASSERT_EQ(which.exit_code, 0) << which.output;
+  EXPECT_NE(which.output.find("executable     " + fp32), std::string::npos) << which.output;
+  const RunResult missing = testing::RunCommand("KDRT_SIM_MODEL_BINARY=" + Path("none") + " " + KDRT_BIN +
+                                                " sim gen:room:300 --res 4x4 -o " + Path("m.png"));
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_NE(missing.output.find("KDRT_SIM_MODEL_BINARY names no file"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(Path("m.png")));
+}
+
 // A core reads the image of its own format: the fp32 model refuses an fp16
 // image (as `kdrt info --format fp16 --image` writes it), and the fp16 model
 // runs it.
