@@ -76,8 +76,11 @@ class CoreHarness {
 
  private:
   void Configure();
-  // Drives ray, memory-response and hit-ready inputs for cycle `cycle`.
-  void BeginCycle(uint64_t cycle);
+  // Drives ray, memory-response and hit-ready inputs for cycle `cycle`;
+  // whether any of them differs from what the model last evaluated.
+  bool BeginCycle(uint64_t cycle);
+  // The inputs BeginCycle drives, as words.
+  std::array<uint32_t, 19> DrivenInputs() const;
   // After evaluating with the clock low: handshakes, perf events, checks.
   void EndCycle(uint64_t cycle);
   void CheckHit(uint64_t cycle, uint32_t id, const Hit& got, bool overflow);

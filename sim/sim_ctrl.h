@@ -100,6 +100,7 @@ class SimCtrl {
         Edge();
       }
       top_->rst_ni = 1;
+      after_rising_edge_ = false;  // rst_ni rose unevaluated: the next Settle() evaluates
     }
     cycle_ = 0;
   }
@@ -109,7 +110,27 @@ class SimCtrl {
     if constexpr (kClocked) top_->clk_i = 0;
     top_->eval();
     clock_low_evaluated_ = true;
+    after_rising_edge_ = false;
     Dump(0);
+  }
+
+  // Settle() for a cycle whose inputs are those the model last evaluated:
+  // the rising edge's evaluation settled the design on them already, so
+  // nothing is evaluated; `clock_fell(top)` tells the model that its clock
+  // is low (Verilator compares the clock with its value at the last
+  // evaluation to find the next rising edge). While a waveform is written,
+  // or before the first edge, this is Settle().
+  template <class ClockFell>
+  void SettleUnchanged(ClockFell clock_fell) {
+    if constexpr (kClocked) {
+      if (after_rising_edge_ && !tracing()) {
+        top_->clk_i = 0;
+        clock_fell(*top_);
+        clock_low_evaluated_ = true;
+        return;
+      }
+    }
+    Settle();
   }
 
   // The rising and falling edges; the cycle counter advances.
@@ -139,6 +160,7 @@ class SimCtrl {
       top_->clk_i = 1;
       top_->eval();
       clock_low_evaluated_ = false;
+      after_rising_edge_ = true;
       Dump(1);
       top_->clk_i = 0;
     } else {
@@ -159,6 +181,7 @@ class SimCtrl {
 #endif
   bool dump_ = true;
   bool clock_low_evaluated_ = false;  // eval() has seen clk_i low since the last rising edge
+  bool after_rising_edge_ = false;    // the last evaluation was a rising edge
   uint64_t cycle_ = 0;
   uint64_t phase_time_ = 0;  // cycles including reset, for waveform times
 };
