@@ -83,7 +83,8 @@ ASAN_BUILD ?= build-asan
 ASAN_TESTS ?= scene_tests fuzz_tests accel_tests fp_tests trace_tests structures_tests
 ASAN_FUZZ_CASES ?=
 test-asan: deps
-	@test -f $(ASAN_BUILD)/build.ninja || cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DKDRT_SANITIZE=ON
+	@test -f $(ASAN_BUILD)/build.ninja && grep -q '^KDRT_MODEL_PGO:BOOL=OFF' $(ASAN_BUILD)/CMakeCache.txt || \
+	  cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DKDRT_SANITIZE=ON -DKDRT_MODEL_PGO=OFF
 	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target kdrt $(ASAN_TESTS)
 	@set -e; for t in $(ASAN_TESTS); do \
 	  echo "test-asan: $$t"; \
