@@ -32,7 +32,23 @@ template <int W>
 struct Vec {
   typedef float F __attribute__((vector_size(4 * W)));
   typedef int32_t I __attribute__((vector_size(4 * W)));
+  typedef uint32_t U __attribute__((vector_size(4 * W)));
 };
+
+// a + b and a - b on the bits, wrapping: every lane is computed, also those
+// a Select() then leaves out (-0.0 or NaN bits, where a signed sum would
+// overflow).
+template <int W>
+KDRT_HOT_INLINE typename Vec<W>::I WrapAdd(typename Vec<W>::I a, typename Vec<W>::I b) {
+  using U = typename Vec<W>::U;
+  return reinterpret_cast<typename Vec<W>::I>(reinterpret_cast<U>(a) + reinterpret_cast<U>(b));
+}
+
+template <int W>
+KDRT_HOT_INLINE typename Vec<W>::I WrapSub(typename Vec<W>::I a, typename Vec<W>::I b) {
+  using U = typename Vec<W>::U;
+  return reinterpret_cast<typename Vec<W>::I>(reinterpret_cast<U>(a) - reinterpret_cast<U>(b));
+}
 
 template <int W>
 KDRT_HOT_INLINE typename Vec<W>::F SplatF(float x) {
@@ -86,7 +102,7 @@ KDRT_HOT_INLINE typename Vec<W>::F NudgeUpV(typename Vec<W>::F x) {
   const F inf = SplatF<W>(A::Inf());
   const I bits = reinterpret_cast<I>(x);
   const I move = (x > SplatF<W>(0.0f)) & (x != inf);
-  const I u = bits + SplatI<W>(static_cast<int32_t>(kTraversalSlackUlps));
+  const I u = WrapAdd<W>(bits, SplatI<W>(static_cast<int32_t>(kTraversalSlackUlps)));
   const I up = Select(u >= SplatI<W>(0x7F800000), reinterpret_cast<I>(inf), u);
   return reinterpret_cast<F>(Select(move, up, bits));
 }
@@ -98,7 +114,7 @@ KDRT_HOT_INLINE typename Vec<W>::F NudgeDownV(typename Vec<W>::F x) {
   const I bits = reinterpret_cast<I>(x);
   const I move = (x > SplatF<W>(0.0f)) & (x != SplatF<W>(A::Inf()));
   const I down = Select(bits < SplatI<W>(static_cast<int32_t>(0x00800000u + kTraversalSlackUlps)), SplatI<W>(0),
-                        bits - SplatI<W>(static_cast<int32_t>(kTraversalSlackUlps)));
+                        WrapSub<W>(bits, SplatI<W>(static_cast<int32_t>(kTraversalSlackUlps))));
   return reinterpret_cast<F>(Select(move, down, bits));
 }
 
