@@ -173,7 +173,8 @@ void BuildModel(const ConfigChoice& choice, const ModelLocation& loc) {
   }
   const std::string log = (models_dir / (ModelName(choice, loc.quick) + ".build.log")).string();
   std::fprintf(stderr,
-               "kdrt sim: %s the simulation model %s (Verilator, once; minutes: up to about 3 on 2 cores for a 128-thread core, twice that for a preset compiled with its profile, KDRT_MODEL_PGO)%s\n"
+               "kdrt sim: %s the simulation model %s (Verilator, once; minutes: up to about 3 on 2 cores for a "
+               "128-thread core, twice that for a preset compiled with its profile, KDRT_MODEL_PGO)%s\n"
                "kdrt sim: log in %s\n",
                loc.stale ? "sources changed since it was built: rebuilding" : "building", choice.config.Key().c_str(),
                loc.quick ? ", a quick build (KDRT_QUICK_MODELS: its C++ one unit at -O1 without waveforms, a fraction of the compile "
