@@ -215,9 +215,9 @@ std::string TradeCsv(const TradeResult& t) {
     if (auto perf = r.RaysPerCyclePerKcell()) s << *perf;
     // The physical columns: empty without a synthesis of the simulated configuration.
     const nlohmann::json& p = r.physical;
-    if (r.MraysPerSPerMm2()) {
+    if (const auto per_mm2 = r.MraysPerSPerMm2()) {
       s << ',' << p["area_mm2"]["total"].get<double>() << ',' << p["clock_ns"].get<double>() << ','
-        << p["mrays_per_s"].get<double>() << ',' << *r.MraysPerSPerMm2() << ',';
+        << p["mrays_per_s"].get<double>() << ',' << *per_mm2 << ',';
       if (auto scaled = r.MraysPerSPerMm2At28nm()) s << *scaled;
     } else {
       s << ",,,,";

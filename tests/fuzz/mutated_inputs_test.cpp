@@ -31,6 +31,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/common/read_file.h"
 #include "tests/common/run_kdrt.h"
 
 namespace kdrt {
@@ -59,13 +60,6 @@ struct Seed {
   std::string bytes;
   bool binary;
 };
-
-std::string ReadFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 template <typename T>
 void Append(std::string* s, T v, bool big_endian = false) {
@@ -108,7 +102,7 @@ std::string RayFile() {
 std::vector<Seed> Seeds() {
   std::vector<Seed> seeds;
   for (const auto& e : fs::directory_iterator(fs::path(KDRT_SOURCE_DIR) / "tests/fuzz/seeds")) {
-    seeds.push_back({e.path().filename().string(), ReadFile(e.path()), false});
+    seeds.push_back({e.path().filename().string(), kdrt::testing::ReadFile(e.path()), false});
   }
   std::sort(seeds.begin(), seeds.end(), [](const Seed& a, const Seed& b) { return a.name < b.name; });
   seeds.push_back({"little.ply", BinaryPly(false), true});

@@ -26,15 +26,6 @@ using sim::SimCtrl;
 
 constexpr uint32_t kMask = 0xFFFF;  // Width = 16, as verilated
 
-// One queue's outputs against the model; nullptr when they agree.
-template <class Dut>
-const char* Check(const Dut& dut, const std::deque<uint32_t>& model, unsigned depth) {
-  if (static_cast<bool>(dut.in_ready_o) != (model.size() < depth)) return "in_ready_o";
-  if (static_cast<bool>(dut.out_valid_o) != !model.empty()) return "out_valid_o";
-  if (!model.empty() && dut.out_data_o != model.front()) return "out_data_o is not the oldest entry";
-  return nullptr;
-}
-
 template <class Dut>
 bool Run(const char* unit, unsigned depth, uint64_t cycles) {
   SimCtrl<Dut> sim;
@@ -66,7 +57,9 @@ bool Run(const char* unit, unsigned depth, uint64_t cycles) {
     dut.in_data_i = offering ? pending : (rng.Bits32() & kMask);  // don't-care while not valid
     dut.out_ready_i = rng.Chance(p_ready);
     sim.Settle();
-    if (const char* what = Check(dut, model, depth)) return fail(what, cycle);
+    if (static_cast<bool>(dut.in_ready_o) != (model.size() < depth)) return fail("in_ready_o", cycle);
+    if (static_cast<bool>(dut.out_valid_o) != !model.empty()) return fail("out_valid_o", cycle);
+    if (!model.empty() && dut.out_data_o != model.front()) return fail("out_data_o is not the oldest entry", cycle);
     full_cycles += model.size() == depth;
     const bool push = dut.in_valid_i && dut.in_ready_o;
     const bool pop = dut.out_valid_o && dut.out_ready_i;

@@ -9,17 +9,13 @@
 #include "scene/nff_writer.h"
 #include "scene/scene.h"
 #include "scenes/gen/generators.h"
+#include "tests/common/read_file.h"
 #include "tests/scene/scene_test_util.h"
 
 namespace kdrt {
 namespace {
 
 using testing::TempDir;
-
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 bool SameBits(const glm::vec3& a, const glm::vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -95,7 +91,7 @@ TEST(NffWriter, RoundTripOfAwkwardFloatsIsBitExact) {
   std::string again = dir.File("again.nff");
   back.source = s.source;
   WriteNff(back, again);
-  EXPECT_EQ(ReadFile(path), ReadFile(again));
+  EXPECT_EQ(kdrt::testing::ReadFile(path), kdrt::testing::ReadFile(again));
 }
 
 TEST(NffWriter, GeneratedSceneRoundTrip) {

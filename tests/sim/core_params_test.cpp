@@ -16,19 +16,13 @@
 
 #include "common/error.h"
 #include "sim/core_params.h"
+#include "tests/common/read_file.h"
 
 namespace kdrt::sim {
 namespace {
 
-std::string ReadText(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 TEST(CoreParams, TableDefaultsAreTheRtlDefaults) {
-  const std::string sv = ReadText(std::string(KDRT_SOURCE_DIR) + "/rtl/rt_core.sv");
+  const std::string sv = kdrt::testing::ReadFile(std::string(KDRT_SOURCE_DIR) + "/rtl/rt_core.sv");
   ASSERT_FALSE(sv.empty());
   // A default may name an earlier parameter (the traversal's format is E, M).
   std::map<std::string, int> defaults;

@@ -12,6 +12,7 @@
 // instead of 24x24, every preset on the default core.
 #include <gtest/gtest.h>
 
+#include "tests/common/read_file.h"
 #include "tests/common/run_kdrt.h"
 #include "tests/common/test_cores.h"
 
@@ -52,11 +53,6 @@ using testing::RunKdrt;
 using testing::RunResult;
 using testing::SmallCore;
 
-std::string ReadBytes(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-}
-
 
 class SimCli : public ::testing::Test {
  protected:
@@ -91,7 +87,7 @@ class SimCli : public ::testing::Test {
       ASSERT_EQ(fp::BitsOf(ha[i].v), fp::BitsOf(hb[i].v)) << "pixel " << i;
     }
     EXPECT_GT(hits, 0u) << "a test that hits nothing checks little";
-    EXPECT_EQ(ReadBytes(a), ReadBytes(b)) << "EXR files differ in bytes";
+    EXPECT_EQ(kdrt::testing::ReadFile(a), kdrt::testing::ReadFile(b)) << "EXR files differ in bytes";
   }
 
   nlohmann::json ReadJson(const std::string& path) {
@@ -146,7 +142,7 @@ TEST_P(SimMatchesRender, HitBuffersAreIdentical) {
                               Path("sim.exr") + " --json " + Path("sim.json"));
   ASSERT_EQ(s.exit_code, 0) << s.output;
   ExpectSameHitBuffers(Path("render.exr"), Path("sim.exr"));
-  EXPECT_EQ(ReadBytes(Path("render.png")), ReadBytes(Path("sim.png")));
+  EXPECT_EQ(kdrt::testing::ReadFile(Path("render.png")), kdrt::testing::ReadFile(Path("sim.png")));
   const nlohmann::json j = ReadJson(Path("sim.json"));
   const uint64_t rays = j["rays"];
   EXPECT_EQ(rays, LongRun() ? 512u * 512u : 24u * 24u);
@@ -199,11 +195,11 @@ TEST_P(ShadedFrameMatchesRender, ImageAndRaySetsAreIdentical) {
   const RunResult s = RunKdrt("sim " + common + core + " -o " + Path("sim.png") + " --json " + Path("sim.json") +
                               " --write-rays " + Path("sim_rays"));
   ASSERT_EQ(s.exit_code, 0) << s.output;
-  EXPECT_EQ(ReadBytes(Path("render.png")), ReadBytes(Path("sim.png")));
+  EXPECT_EQ(kdrt::testing::ReadFile(Path("render.png")), kdrt::testing::ReadFile(Path("sim.png")));
   for (const char* pass : {"primary", "shadow", "ao", "bounce"}) {
     const std::string name = std::string(pass) + ".rays";
     ASSERT_TRUE(fs::exists(Path("render_rays/" + name))) << name;
-    EXPECT_EQ(ReadBytes(Path("render_rays/" + name)), ReadBytes(Path("sim_rays/" + name))) << name;
+    EXPECT_EQ(kdrt::testing::ReadFile(Path("render_rays/" + name)), kdrt::testing::ReadFile(Path("sim_rays/" + name))) << name;
   }
   const nlohmann::json j = ReadJson(Path("sim.json"));
   const nlohmann::json rj = ReadJson(Path("render.json"));
@@ -239,10 +235,10 @@ TEST_P(ShadedFrameMatchesRender, ImageAndRaySetsAreIdentical) {
   const RunResult k = RunKdrt("sim " + common + core + " --ray-order morton:3 -q -o " + Path("k.png") + " --json " +
                               Path("k.json") + " --write-rays " + Path("k_rays"));
   ASSERT_EQ(k.exit_code, 0) << k.output;
-  EXPECT_EQ(ReadBytes(Path("render.png")), ReadBytes(Path("k.png")));
+  EXPECT_EQ(kdrt::testing::ReadFile(Path("render.png")), kdrt::testing::ReadFile(Path("k.png")));
   for (const char* pass : {"primary", "shadow", "ao", "bounce"}) {
     const std::string name = std::string(pass) + ".rays";
-    EXPECT_EQ(ReadBytes(Path("render_rays/" + name)), ReadBytes(Path("k_rays/" + name))) << name;
+    EXPECT_EQ(kdrt::testing::ReadFile(Path("render_rays/" + name)), kdrt::testing::ReadFile(Path("k_rays/" + name))) << name;
   }
   const nlohmann::json kj = ReadJson(Path("k.json"));
   ASSERT_EQ(kj["passes"].size(), 4u);
@@ -355,7 +351,7 @@ TEST_P(FastModelMatchesRtl, SameCyclesAndEvents) {
   const RunResult fast = RunKdrt("sim " + common + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
   ASSERT_EQ(fast.exit_code, 0) << fast.output;
   EXPECT_NE(fast.output.find("cycle model    fast"), std::string::npos) << fast.output;
-  EXPECT_EQ(ReadBytes(Path("f.png")), ReadBytes(Path("b.png")));
+  EXPECT_EQ(kdrt::testing::ReadFile(Path("f.png")), kdrt::testing::ReadFile(Path("b.png")));
   EXPECT_EQ(ReadJson(Path("f.json"))["cycles"], j["cycles"]);
 }
 
@@ -385,7 +381,7 @@ TEST_F(SimCli, ListPrefetchMatchesTheFastModel) {
       RunKdrt(common + CrowdedMemoryCore(0) + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
   ASSERT_EQ(off.exit_code, 0) << off.output;
   const nlohmann::json jo = ReadJson(Path("f.json"));
-  EXPECT_EQ(ReadBytes(Path("f.png")), ReadBytes(Path("x.png")));
+  EXPECT_EQ(kdrt::testing::ReadFile(Path("f.png")), kdrt::testing::ReadFile(Path("x.png")));
   const auto own_fetches = [](const nlohmann::json& k) {
     return k["perf_counts"]["list_miss"].get<uint64_t>() - k["perf_counts"]["list_merge"].get<uint64_t>();
   };
@@ -443,7 +439,7 @@ TEST_P(FastModelMatchesRtlCores, SameCyclesPerCore) {
   for (const auto& core : f["per_core"]) EXPECT_GT(core["rays"].get<uint64_t>(), 0u);
   const RunResult fast = RunKdrt(common + " --model fast -o " + Path("f.png") + " --json " + Path("f.json"));
   ASSERT_EQ(fast.exit_code, 0) << fast.output;
-  EXPECT_EQ(ReadBytes(Path("f.png")), ReadBytes(Path("x.png")));
+  EXPECT_EQ(kdrt::testing::ReadFile(Path("f.png")), kdrt::testing::ReadFile(Path("x.png")));
   EXPECT_EQ(ReadJson(Path("f.json"))["per_core"], j["per_core"]);
 }
 
@@ -870,7 +866,7 @@ TEST_F(SimCli, SceneLargerThanTheMemoryIsRefused) {
   // A memory one cache line smaller than the scene's image.
   const RunResult info = RunKdrt("info gen:balls:500 --json " + Path("info.json"));
   ASSERT_EQ(info.exit_code, 0) << info.output;
-  const std::string json = ReadBytes(Path("info.json"));
+  const std::string json = kdrt::testing::ReadFile(Path("info.json"));
   const size_t at = json.find("\"image_bytes\": ");
   ASSERT_NE(at, std::string::npos) << json;
   const uint64_t image_bytes = std::stoull(json.substr(at + 15));
@@ -1024,7 +1020,7 @@ TEST_F(SimCli, TraceWritesAnFstWaveform) {
   const std::string common = "gen:room:300 --res 4x4 -q -o " + Path("x.png");
   ASSERT_EQ(RunKdrt("sim " + common + " --trace " + Path("all.fst")).exit_code, 0);
   ASSERT_EQ(RunKdrt("sim " + common + " --trace " + Path("one.fst") + " --trace-ray 5").exit_code, 0);
-  const std::string all = ReadBytes(Path("all.fst")), one = ReadBytes(Path("one.fst"));
+  const std::string all = kdrt::testing::ReadFile(Path("all.fst")), one = kdrt::testing::ReadFile(Path("one.fst"));
   ASSERT_GT(all.size(), 64u);
   ASSERT_GT(one.size(), 64u);
   EXPECT_EQ(all[0], 0) << "an FST file starts with its header block (type 0)";

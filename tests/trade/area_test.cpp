@@ -19,6 +19,7 @@
 
 #include "common/error.h"
 #include "fp/format.h"
+#include "tests/common/read_file.h"
 #include "tests/common/test_cores.h"
 #include "trade/area.h"
 
@@ -75,13 +76,6 @@ Row TableSum(const std::map<std::string, Row>& table, const std::string& preset)
   for (const std::string& u : kFormatUnits) add(u + "/" + preset);
   for (const std::string& u : kFixedUnits) add(u + "/defaults");
   return sum;
-}
-
-std::string ReadText(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
 }
 
 class AreaTest : public ::testing::Test {
@@ -171,7 +165,7 @@ TEST_F(AreaTest, PresetsSumTheTableRows) {
 // wrong core; and a core of other sizes (such as the default core) is
 // said to be not the one counted.
 int ModuleDefault(const std::string& file, const std::string& param) {
-  const std::string sv = ReadText(kSource + "/rtl/" + file);
+  const std::string sv = kdrt::testing::ReadFile(kSource + "/rtl/" + file);
   const std::string key = "parameter int unsigned " + param + " = ";
   const size_t at = sv.find(key);
   if (at == std::string::npos) return -1;
@@ -437,7 +431,7 @@ TEST_F(AreaTest, SynthesizesAMissingFormatOnDemand) {
   EXPECT_NEAR(static_cast<double>(estimate.flip_flops), static_cast<double>(a.flip_flops), 0.15 * a.flip_flops);
 
   const fs::path json = fs::path(options_.cache_dir) / RtlHash(kSource) / "rt_hit_out_e4m3.json";
-  EXPECT_NE(ReadText(json).find("\"unit\": \"rt_hit_out\""), std::string::npos);
+  EXPECT_NE(kdrt::testing::ReadFile(json).find("\"unit\": \"rt_hit_out\""), std::string::npos);
 
   messages.clear();
   const Area again = CoreArea(f, options_);
@@ -469,13 +463,13 @@ TEST(SynthUnit, SramKeepsTheCacheLinesAsAMacro) {
   const std::string ltp = (dir / "flops.ltp").string();
   ASSERT_EQ(std::system(("LTP_OUT=" + ltp + " " + script + " rt_cache - - " + flops + params).c_str()), 0);
   ASSERT_EQ(std::system((script + " --sram rt_cache - - " + sram + params).c_str()), 0);
-  const std::string f = ReadText(flops), s = ReadText(sram);
+  const std::string f = kdrt::testing::ReadFile(flops), s = kdrt::testing::ReadFile(sram);
   const auto number = [](const std::string& json, const std::string& key) {
     const size_t at = json.find("\"" + key + "\": ");
     return at == std::string::npos ? -1LL : std::stoll(json.substr(at + key.size() + 4));
   };
   // LTP_OUT keeps the path whose length is the JSON's depth.
-  const std::string path = ReadText(ltp);
+  const std::string path = kdrt::testing::ReadFile(ltp);
   EXPECT_NE(path.find("Longest topological path"), std::string::npos) << path;
   EXPECT_NE(path.find("(length=" + std::to_string(number(f, "depth")) + ")"), std::string::npos) << path;
   EXPECT_EQ(f.find("sram_bits"), std::string::npos) << f;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/common/read_file.h"
 #include "trade/accuracy.h"
 #include "trade/report.h"
 #include "trade/svg_plot.h"
@@ -132,13 +133,6 @@ nlohmann::json Physical(double area_mm2, double clock_ns, double mrays, double p
           {"scaled", {{"28nm", {{"mrays_per_s_per_mm2", per_mm2_28nm}}}}}};
 }
 
-std::string PageText(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 class TradePhysical : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -168,14 +162,14 @@ TEST_F(TradePhysical, CsvAndPlotCarryTheSynthesizedFormatsAndNameTheOthers) {
   EXPECT_NE(bf16.find(",,,,,\""), std::string::npos) << bf16;
 
   WriteHtml(t_, dir_.string());
-  const std::string svg = PageText(dir_ / "error-vs-mrays-per-mm2.svg");
+  const std::string svg = kdrt::testing::ReadFile(dir_ / "error-vs-mrays-per-mm2.svg");
   size_t points = 0;
   for (size_t at = svg.find("class=\"point\""); at != std::string::npos; at = svg.find("class=\"point\"", at + 1)) {
     ++points;
   }
   EXPECT_EQ(points, 1u);  // fp32 only
   EXPECT_NE(svg.find("osu018"), std::string::npos);
-  const std::string html = PageText(dir_ / "index.html");
+  const std::string html = kdrt::testing::ReadFile(dir_ / "index.html");
   EXPECT_NE(html.find("error-vs-mrays-per-mm2.svg"), std::string::npos);
   EXPECT_NE(html.find("Not in the Mrays/s per mm^2 plot: bf16"), std::string::npos);
   EXPECT_NE(html.find("<td>0.0186</td><td>9.75</td>"), std::string::npos);
@@ -184,7 +178,7 @@ TEST_F(TradePhysical, CsvAndPlotCarryTheSynthesizedFormatsAndNameTheOthers) {
 TEST_F(TradePhysical, NoSynthesisMeansNoPlotAndASentence) {
   WriteHtml(t_, dir_.string());
   EXPECT_FALSE(std::filesystem::exists(dir_ / "error-vs-mrays-per-mm2.svg"));
-  const std::string html = PageText(dir_ / "index.html");
+  const std::string html = kdrt::testing::ReadFile(dir_ / "index.html");
   EXPECT_EQ(html.find("error-vs-mrays-per-mm2.svg"), std::string::npos);
   EXPECT_NE(html.find("Not in the Mrays/s per mm^2 column (and no plot): fp32, bf16"), std::string::npos);
   EXPECT_FALSE(t_.formats[0].MraysPerSPerMm2().has_value());
