@@ -117,14 +117,21 @@ module rt_cache #(
   logic [KeyWidth-1:0] key_q [Lines];
   logic [Lines-1:0]    valid_q;
 
-  // Miss registers (MSHRs), flat vectors indexed by the register number.
+  // Miss registers (MSHRs): the conditions every register is matched or
+  // picked by are vectors of a bit per register (valid, beats received,
+  // beats left to request, no room for another request), so that they are
+  // updated and combined a whole vector at a time; the rest is read at one
+  // register's index. The counters and addresses need no reset: they are
+  // read only while their register is valid, and set when it is taken.
   logic [Mshrs-1:0]           mshr_valid_q;
-  logic [Mshrs*KeyWidth-1:0]  mshr_key_q;
-  logic [Mshrs*AddrWidth-1:0] mshr_addr_q;
-  logic [Mshrs*TgtW-1:0]      mshr_cnt_q;    // requests joined
-  logic [Mshrs*TgtW-1:0]      mshr_out_q;    // requests answered
-  logic [Mshrs*CntW-1:0]      mshr_sent_q;   // beats requested so far
-  logic [Mshrs*LineBeats-1:0] mshr_got_q;    // beats received
+  logic [LineBeats*Mshrs-1:0] mshr_got_q;     // beat b received: bits Mshrs b up
+  logic [Mshrs-1:0]           mshr_unsent_q;  // beats left to request
+  logic [Mshrs-1:0]           mshr_full_q;    // Targets requests joined
+  logic [KeyWidth-1:0]        mshr_key_q [Mshrs];
+  logic [AddrWidth-1:0]       mshr_addr_q [Mshrs];
+  logic [TgtW-1:0]            mshr_cnt_q [Mshrs];   // requests joined
+  logic [TgtW-1:0]            mshr_out_q [Mshrs];   // requests answered
+  logic [CntW-1:0]            mshr_sent_q [Mshrs];  // beats requested so far
 
   // Two response registers, one for hits and one for completed misses, so a
   // hit is taken while a miss is being answered; the response port shows the
@@ -135,25 +142,33 @@ module rt_cache #(
 
   // Per-register conditions and the lowest-numbered register of each kind
   // (key_match2, joinable2: for the miss-only port's key).
-  logic [Mshrs-1:0] key_match, done, sending, joinable, key_match2, joinable2;
+  logic [Mshrs-1:0] key_match, done, sending, joinable, key_match2, joinable2, all_got;
   logic             free_valid, done_valid, send_valid, pick_valid, join_valid, join2_valid;
   logic [MshrW-1:0] free_idx, done_idx, send_idx, pick_idx, join_idx, join2_idx;
-  for (genvar m = 0; m < Mshrs; m++) begin : g_mshr
-    logic room;
-    assign room = mshr_cnt_q[TgtW*m +: TgtW] < TgtW'(Targets);
-    assign key_match[m] = mshr_valid_q[m] && mshr_key_q[KeyWidth*m +: KeyWidth] == req_key_i;
-    assign key_match2[m] = mshr_valid_q[m] && mshr_key_q[KeyWidth*m +: KeyWidth] == req2_key_i;
-    assign done[m] = mshr_valid_q[m] && (&mshr_got_q[LineBeats*m +: LineBeats]);
-    assign sending[m] = mshr_valid_q[m] && mshr_sent_q[CntW*m +: CntW] < CntW'(LineBeats);
-    assign joinable[m] = key_match[m] && !done[m] && room;
-    assign joinable2[m] = key_match2[m] && !done[m] && room;
+  logic [MshrW-1:0] done_idx_next, done_idx_q;
+  always_comb begin
+    for (int unsigned m = 0; m < Mshrs; m++) begin
+      key_match[m] = mshr_key_q[m] == req_key_i;
+      key_match2[m] = mshr_key_q[m] == req2_key_i;
+    end
+    key_match &= mshr_valid_q;
+    key_match2 &= mshr_valid_q;
+    all_got = '1;
+    for (int unsigned b = 0; b < LineBeats; b++) all_got &= mshr_got_q[Mshrs*b +: Mshrs];
   end
-  // Log-depth priority encoders (rtl/rt_prio_enc.sv), one per kind.
+  assign done = mshr_valid_q & all_got;
+  assign sending = mshr_valid_q & mshr_unsent_q;
+  assign joinable = key_match & ~done & ~mshr_full_q;
+  assign joinable2 = key_match2 & ~done & ~mshr_full_q;
+  // Log-depth priority encoders (rtl/rt_prio_enc.sv), one per kind. The
+  // completed register is the lowest of `done`, encoded a cycle ahead from
+  // the registers' next state (done_idx_next below) into done_idx_q.
   rt_prio_enc #(.N(Mshrs)) u_free_enc (.req_i(~mshr_valid_q), .valid_o(free_valid), .idx_o(free_idx));
   rt_prio_enc #(.N(Mshrs)) u_join_enc (.req_i(joinable), .valid_o(join_valid), .idx_o(join_idx));
   rt_prio_enc #(.N(Mshrs)) u_join2_enc (.req_i(joinable2), .valid_o(join2_valid), .idx_o(join2_idx));
-  rt_prio_enc #(.N(Mshrs)) u_done_enc (.req_i(done), .valid_o(done_valid), .idx_o(done_idx));
   rt_prio_enc #(.N(Mshrs)) u_pick_enc (.req_i(sending), .valid_o(pick_valid), .idx_o(pick_idx));
+  assign done_valid = |done;
+  assign done_idx = done_idx_q;
 
   logic [IdxW-1:0]     hit_line, done_line;
   logic [KeyWidth-1:0] done_key;
@@ -170,7 +185,12 @@ module rt_cache #(
   logic [AddrWidth-1:0] m_addr;
   logic [TagWidth-1:0] m_tag;
 
-  assign done_key = mshr_key_q[KeyWidth*done_idx +: KeyWidth];
+  // The completed register's key, read a cycle ahead at done_idx_next as the
+  // memories are (a register taken in a cycle is not completed in the next:
+  // its beats are still to come).
+  logic [KeyWidth-1:0] done_key_q;
+  always_ff @(posedge clk_i) done_key_q <= mshr_key_q[done_idx_next];
+  assign done_key = done_key_q;
   logic [MshrW-1:0]    resp_mshr;
   logic [BeatW-1:0]    resp_beat;
   assign {resp_mshr, resp_beat} = mem_resp_id_i;
@@ -191,20 +211,24 @@ module rt_cache #(
   // requests in the cycle it is answered, as a read of flip-flops at
   // done_idx would. A word written in the cycle it is read (the beat that
   // completes the line, a request joining it) is forwarded.
-  logic [Mshrs-1:0] done_next;
+  // The registers' valid and received-beat vectors take exactly this next
+  // state, so done_idx_q is always the lowest completed register.
+  logic [Mshrs-1:0] alloc_oh, resp_oh, free_oh, valid_next, all_got_next, done_next;
+  logic [LineBeats*Mshrs-1:0] got_next;
   logic             unused_done_next_valid;
-  logic [MshrW-1:0] done_idx_next, done_idx_q;
-  for (genvar m = 0; m < Mshrs; m++) begin : g_next
-    logic alloc_here, resp_here, free_here, valid_next;
-    logic [LineBeats-1:0] got_next;
-    assign alloc_here = m_take && !m_join && free_idx == MshrW'(m);
-    assign resp_here = mem_resp_valid_i && resp_mshr == MshrW'(m);
-    assign free_here = deliver && (done_last || done_cnt == '0) && done_idx == MshrW'(m);
-    assign valid_next = free_here ? 1'b0 : alloc_here ? 1'b1 : mshr_valid_q[m];
-    assign got_next = resp_here ? mshr_got_q[LineBeats*m +: LineBeats] | LineBeats'(1 << resp_beat)
-                    : alloc_here ? '0 : mshr_got_q[LineBeats*m +: LineBeats];
-    assign done_next[m] = valid_next && (&got_next);
+  always_comb begin
+    alloc_oh = (m_take && !m_join) ? Mshrs'(1) << free_idx : '0;
+    resp_oh = mem_resp_valid_i ? Mshrs'(1) << resp_mshr : '0;
+    free_oh = (deliver && (done_last || done_cnt == '0)) ? Mshrs'(1) << done_idx : '0;
+    valid_next = (mshr_valid_q | alloc_oh) & ~free_oh;
+    all_got_next = '1;
+    for (int unsigned b = 0; b < LineBeats; b++) begin
+      got_next[Mshrs*b +: Mshrs] = (mshr_got_q[Mshrs*b +: Mshrs] & ~alloc_oh) |
+                                   (resp_beat == BeatW'(b) ? resp_oh : '0);
+      all_got_next &= got_next[Mshrs*b +: Mshrs];
+    end
   end
+  assign done_next = valid_next & all_got_next;
   rt_prio_enc #(.N(Mshrs)) u_done_next_enc (.req_i(done_next), .valid_o(unused_done_next_valid),
                                             .idx_o(done_idx_next));
 
@@ -233,7 +257,7 @@ module rt_cache #(
   logic                tgt_fwd_q;
   logic [TagWidth-1:0] tgt_rdata, tgt_fwd_data_q;
   always_comb begin
-    out_next_at_done = mshr_out_q[TgtW*done_idx_next +: TgtW];
+    out_next_at_done = mshr_out_q[done_idx_next];
     if (m_take && !m_join && free_idx == done_idx_next) out_next_at_done = '0;
     if (deliver && done_idx == done_idx_next) out_next_at_done = done_out + 1'b1;
   end
@@ -249,18 +273,21 @@ module rt_cache #(
   end
   assign done_tag = tgt_fwd_q ? tgt_fwd_data_q : tgt_rdata;
 
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) done_idx_q <= '0;
+    else done_idx_q <= done_idx_next;
+  end
 `ifndef SYNTHESIS
+  // The memories were read at the completed register: the lowest of `done`.
   always_ff @(posedge clk_i) begin
-    done_idx_q <= done_idx_next;
     if (rst_ni && done_valid) begin
-      assert (done_idx == done_idx_q) else $error("rt_cache: the memories were read at another register");
+      assert (done[done_idx] && (done & ((Mshrs'(1) << done_idx) - 1'b1)) == '0)
+        else $error("rt_cache: the memories were read at another register");
     end
   end
-`else
-  assign done_idx_q = '0;
 `endif
-  assign done_cnt = mshr_cnt_q[TgtW*done_idx +: TgtW];
-  assign done_out = mshr_out_q[TgtW*done_idx +: TgtW];
+  assign done_cnt = mshr_cnt_q[done_idx];
+  assign done_out = mshr_out_q[done_idx];
   assign done_last = done_out + 1'b1 == done_cnt;
 
   // Sets is a power of two: a key's set is its low bits. Line set * Ways + w
@@ -366,7 +393,7 @@ module rt_cache #(
   assign m_take = (accept && !lookup_hit) || m_port2;
   assign m_join = m_port2 ? join2_ok : join_ok;
   assign m_join_idx = m_port2 ? join2_idx : join_idx;
-  assign m_join_cnt = mshr_cnt_q[TgtW*m_join_idx +: TgtW];
+  assign m_join_cnt = mshr_cnt_q[m_join_idx];
   assign m_key = m_port2 ? req2_key_i : req_key_i;
   assign m_addr = m_port2 ? req2_addr_i : req_addr_i;
   assign m_tag = m_port2 ? req2_tag_i : req_tag_i;
@@ -400,9 +427,9 @@ module rt_cache #(
   );
 
   logic [CntW-1:0] send_beat;
-  assign send_beat = mshr_sent_q[CntW*send_idx +: CntW];
+  assign send_beat = mshr_sent_q[send_idx];
   assign mem_req_valid_o = send_valid;
-  assign mem_req_addr_o = mshr_addr_q[AddrWidth*send_idx +: AddrWidth] +
+  assign mem_req_addr_o = mshr_addr_q[send_idx] +
                           AddrWidth'(send_beat) * AddrWidth'(16);
   assign mem_req_id_o = {send_idx, send_beat[BeatW-1:0]};
 
@@ -420,38 +447,19 @@ module rt_cache #(
     if (!rst_ni) begin
       valid_q <= '0;
       mshr_valid_q <= '0;
-      mshr_sent_q <= '0;
       mshr_got_q <= '0;
-      mshr_cnt_q <= '0;
-      mshr_out_q <= '0;
       hit_valid_q <= 1'b0;
       del_valid_q <= 1'b0;
     end else begin
       if (out_take && del_valid_q) del_valid_q <= 1'b0;
       if (out_take && !del_valid_q) hit_valid_q <= 1'b0;
       if (accept && lookup_hit) hit_valid_q <= 1'b1;
-      if (m_take) begin
-        if (m_join) begin
-          mshr_cnt_q[TgtW*m_join_idx +: TgtW] <= m_join_cnt + 1'b1;
-        end else begin
-          mshr_valid_q[free_idx] <= 1'b1;
-          mshr_sent_q[CntW*free_idx +: CntW] <= '0;
-          mshr_got_q[LineBeats*free_idx +: LineBeats] <= '0;
-          mshr_cnt_q[TgtW*free_idx +: TgtW] <= m_count0 ? '0 : TgtW'(1);
-          mshr_out_q[TgtW*free_idx +: TgtW] <= '0;
-        end
-      end
-      if (mem_req_valid_o && mem_req_ready_i) begin
-        mshr_sent_q[CntW*send_idx +: CntW] <= send_beat + 1'b1;
-      end
-      if (mem_resp_valid_i) begin
-        mshr_got_q[LineBeats*resp_mshr +: LineBeats] <=
-            mshr_got_q[LineBeats*resp_mshr +: LineBeats] | LineBeats'(1 << resp_beat);
-      end
+      // Taken, freed (a prefetch nobody joined, count 0, with its line
+      // alone), beats received: the next state the completed register is
+      // encoded from.
+      mshr_valid_q <= valid_next;
+      mshr_got_q <= got_next;
       if (deliver) begin
-        // (A prefetch nobody joined, count 0: the line alone.)
-        if (done_last || done_cnt == '0) mshr_valid_q[done_idx] <= 1'b0;
-        mshr_out_q[TgtW*done_idx +: TgtW] <= done_out + 1'b1;
         valid_q[done_line] <= 1'b1;
         if (done_cnt != '0) del_valid_q <= 1'b1;
       end
@@ -464,11 +472,24 @@ module rt_cache #(
       hit_tag_q <= req_tag_i;
     end
     if (m_take) begin
-      if (!m_join) begin
-        mshr_key_q[KeyWidth*free_idx +: KeyWidth] <= m_key;
-        mshr_addr_q[AddrWidth*free_idx +: AddrWidth] <= m_addr;
+      if (m_join) begin
+        mshr_cnt_q[m_join_idx] <= m_join_cnt + 1'b1;
+        mshr_full_q[m_join_idx] <= 32'(m_join_cnt) + 1 >= Targets;
+      end else begin
+        mshr_key_q[free_idx] <= m_key;
+        mshr_addr_q[free_idx] <= m_addr;
+        mshr_sent_q[free_idx] <= '0;
+        mshr_unsent_q[free_idx] <= 1'b1;
+        mshr_cnt_q[free_idx] <= m_count0 ? '0 : TgtW'(1);
+        mshr_full_q[free_idx] <= !m_count0 && Targets == 1;
+        mshr_out_q[free_idx] <= '0;
       end
     end
+    if (mem_req_valid_o && mem_req_ready_i) begin
+      mshr_sent_q[send_idx] <= send_beat + 1'b1;
+      mshr_unsent_q[send_idx] <= 32'(send_beat) + 1 < LineBeats;
+    end
+    if (deliver) mshr_out_q[done_idx] <= done_out + 1'b1;
     if (deliver) begin
       data_q[done_line] <= done_data;
       key_q[done_line] <= done_key;

@@ -27,10 +27,9 @@ module rt_rr_arb #(
   logic [N-1:0]       after;
   logic               after_valid;
   logic [EncW-1:0]    after_idx, all_idx;
-  assign after[0] = 1'b0;
-  for (genvar i = 1; i < N; i++) begin : g_after
-    assign after[i] = 32'(last_q) < 32'(i);
-  end
+  // The requesters above the last grant (a shifted mask, not a comparison
+  // per requester).
+  assign after = ({N{1'b1}} << last_q) << 1;
   if (N == 1) begin : g_single  // one requester: the pointer chooses nothing
     logic unused_last;
     assign unused_last = ^last_q;

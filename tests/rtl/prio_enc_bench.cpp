@@ -2,17 +2,25 @@
 // in C++: valid_o is whether any bit is set, idx_o the lowest set bit's index
 // (0 when none). Every vector for N up to 5; for wider N every single bit,
 // every pair of bits, and random vectors of densities from one bit in a
-// hundred to all set. N = 1, 2, 3, 5 (not powers of two), 32 and 128.
+// hundred to all set. N = 1, 2, 3, 5 (not powers of two), 32 and 128, each
+// in both descriptions of the encoder (Words = 1, the default under
+// Verilator, and the tree, Words = 0, that synthesis takes).
 #include <algorithm>
 #include <cstdio>
 #include <vector>
 
 #include "Vrt_prio_enc_n1.h"
 #include "Vrt_prio_enc_n128.h"
+#include "Vrt_prio_enc_n128_tree.h"
+#include "Vrt_prio_enc_n1_tree.h"
 #include "Vrt_prio_enc_n2.h"
+#include "Vrt_prio_enc_n2_tree.h"
 #include "Vrt_prio_enc_n3.h"
 #include "Vrt_prio_enc_n32.h"
+#include "Vrt_prio_enc_n32_tree.h"
+#include "Vrt_prio_enc_n3_tree.h"
 #include "Vrt_prio_enc_n5.h"
+#include "Vrt_prio_enc_n5_tree.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -24,7 +32,7 @@ using sim::SimCtrl;
 template <class Dut>
 class Check {
  public:
-  explicit Check(unsigned n) : n_(n) {}
+  Check(unsigned n, const char* form) : n_(n), form_(form) {}
   // Applies `bits` (N of them) and compares; false (and a message) on a mismatch.
   bool operator()(const std::vector<bool>& bits) {
     Dut& dut = sim_.top();
@@ -40,7 +48,7 @@ class Check {
     }
     ++vectors_;
     if (dut.valid_o == any && dut.idx_o == lowest) return true;
-    std::printf("rt_prio_enc N=%u: FAIL: req_i bits", n_);
+    std::printf("rt_prio_enc N=%u %s: FAIL: req_i bits", n_, form_);
     for (unsigned i = 0; i < n_; ++i) {
       if (bits[i]) std::printf(" %u", i);
     }
@@ -52,13 +60,14 @@ class Check {
 
  private:
   unsigned n_;
+  const char* form_;
   SimCtrl<Dut> sim_;
   uint64_t vectors_ = 0;
 };
 
 template <class Dut>
-bool Run(unsigned n, uint64_t randoms) {
-  Check<Dut> check(n);
+bool Run(unsigned n, const char* form, uint64_t randoms) {
+  Check<Dut> check(n, form);
   std::vector<bool> bits(n);
   if (n <= 5) {
     for (unsigned v = 0; v < (1u << n); ++v) {
@@ -81,7 +90,8 @@ bool Run(unsigned n, uint64_t randoms) {
       if (!check(bits)) return false;
     }
   }
-  std::printf("rt_prio_enc N=%u: PASS (%llu vectors)\n", n, static_cast<unsigned long long>(check.vectors()));
+  std::printf("rt_prio_enc N=%u %s: PASS (%llu vectors)\n", n, form,
+              static_cast<unsigned long long>(check.vectors()));
   return true;
 }
 
@@ -93,12 +103,18 @@ int main(int argc, char** argv) {
   Verilated::commandArgs(argc, argv);
   const uint64_t randoms = LongRun() ? 10000000 : 200000;
   // N must match the verilated parameters (tests/rtl/CMakeLists.txt).
-  bool ok = Run<Vrt_prio_enc_n1>(1, randoms);
-  ok = Run<Vrt_prio_enc_n2>(2, randoms) && ok;
-  ok = Run<Vrt_prio_enc_n3>(3, randoms) && ok;
-  ok = Run<Vrt_prio_enc_n5>(5, randoms) && ok;
-  ok = Run<Vrt_prio_enc_n32>(32, randoms) && ok;
-  ok = Run<Vrt_prio_enc_n128>(128, randoms) && ok;
+  bool ok = Run<Vrt_prio_enc_n1>(1, "words", randoms);
+  ok = Run<Vrt_prio_enc_n2>(2, "words", randoms) && ok;
+  ok = Run<Vrt_prio_enc_n3>(3, "words", randoms) && ok;
+  ok = Run<Vrt_prio_enc_n5>(5, "words", randoms) && ok;
+  ok = Run<Vrt_prio_enc_n32>(32, "words", randoms) && ok;
+  ok = Run<Vrt_prio_enc_n128>(128, "words", randoms) && ok;
+  ok = Run<Vrt_prio_enc_n1_tree>(1, "tree", randoms) && ok;
+  ok = Run<Vrt_prio_enc_n2_tree>(2, "tree", randoms) && ok;
+  ok = Run<Vrt_prio_enc_n3_tree>(3, "tree", randoms) && ok;
+  ok = Run<Vrt_prio_enc_n5_tree>(5, "tree", randoms) && ok;
+  ok = Run<Vrt_prio_enc_n32_tree>(32, "tree", randoms) && ok;
+  ok = Run<Vrt_prio_enc_n128_tree>(128, "tree", randoms) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }
