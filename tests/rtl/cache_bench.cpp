@@ -26,6 +26,14 @@
 // stream starts fewer fetches of its own (misses that did not merge) with the
 // prefetcher than without it.
 //
+// The fast model's cache (sim/fast_units.h: fast::Cache) runs in lock-step
+// with the RTL in Run and in the prefetch runs: its step gets the RTL's
+// inputs of every cycle; its registered outputs (response valid and tag,
+// memory request valid, address and id) must equal the RTL's in every cycle,
+// and its step must take the same requests and count the same events (hit,
+// miss, merge, prefetch, the two wait reasons). The first divergence names
+// the cycle, the signal and both values.
+//
 // Replacement (RunReplacement): requests one at a time, each answered before
 // the next, on keys that crowd a few sets; every hit or miss must be the one
 // a C++ model of the sets predicts (lowest invalid way, else the tree
@@ -43,6 +51,7 @@
 #include "Vrt_cache_prefetch.h"
 #include "Vrt_cache_ways2.h"
 #include "Vrt_cache_ways8.h"
+#include "sim/fast_units.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -56,14 +65,79 @@ constexpr int kTags = 256;   // TagWidth = 8
 
 uint8_t MemByte(uint64_t addr) { return static_cast<uint8_t>((addr * 2654435761u) >> 13); }
 
+constexpr uint32_t kBase = 0x1000;  // the lines' base address (a request's address: kBase + key x line bytes)
+
 struct Request {
   uint32_t key, addr, tag;
 };
 
+// fast::Cache beside the Verilated cache: Check() after the cycle's inputs
+// are applied and settled, before the clock edge.
+class FastLockStep {
+ public:
+  FastLockStep(const char* name, int beats, int ways, int mshrs, int targets, bool miss_port, bool prefetch_port)
+      : name_(name),
+        cache_(kLines, ways, beats, mshrs, targets, miss_port, kBase, 16u * static_cast<uint64_t>(beats),
+               prefetch_port) {}
+
+  template <class Dut>
+  bool Check(const Dut& dut, uint64_t cycle) {
+    cycle_ = cycle;
+    if (dut.resp_valid_o != cache_.resp_valid()) return Diverge("resp_valid_o", dut.resp_valid_o, cache_.resp_valid());
+    if (dut.resp_valid_o && dut.resp_tag_o != cache_.resp_tag()) {
+      return Diverge("resp_tag_o", dut.resp_tag_o, cache_.resp_tag());
+    }
+    if (dut.mem_req_valid_o != cache_.mem_valid()) {
+      return Diverge("mem_req_valid_o", dut.mem_req_valid_o, cache_.mem_valid());
+    }
+    if (dut.mem_req_valid_o && dut.mem_req_addr_o != cache_.mem_addr()) {
+      return Diverge("mem_req_addr_o", dut.mem_req_addr_o, cache_.mem_addr());
+    }
+    if (dut.mem_req_valid_o && static_cast<int>(dut.mem_req_id_o) != cache_.mem_id()) {
+      return Diverge("mem_req_id_o", dut.mem_req_id_o, static_cast<uint64_t>(cache_.mem_id()));
+    }
+    const sim::fast::Cache::Events before = cache_.events();
+    const unsigned taken = cache_.Step({dut.req_valid_i != 0, dut.req_key_i, dut.req_tag_i},
+                                       {dut.req2_valid_i != 0, dut.req2_key_i, dut.req2_tag_i}, dut.resp_ready_i != 0,
+                                       dut.mem_req_valid_o && dut.mem_req_ready_i,
+                                       dut.mem_resp_valid_i ? static_cast<int>(dut.mem_resp_id_i) : -1);
+    const sim::fast::Cache::Events& after = cache_.events();
+    const unsigned rtl_taken = (dut.req_valid_i && dut.req_ready_o ? 1u : 0u) |
+                               (dut.req2_valid_i && dut.req2_ready_o ? 2u : 0u);
+    if (rtl_taken != taken) return Diverge("requests taken (bit 0: the first port)", rtl_taken, taken);
+    if (dut.hit_o != after.hit - before.hit) return Diverge("hit_o", dut.hit_o, after.hit - before.hit);
+    if (dut.miss_o != after.miss - before.miss) return Diverge("miss_o", dut.miss_o, after.miss - before.miss);
+    if (dut.merge_o != after.merge - before.merge) return Diverge("merge_o", dut.merge_o, after.merge - before.merge);
+    if (dut.prefetch_o != after.prefetch - before.prefetch) {
+      return Diverge("prefetch_o", dut.prefetch_o, after.prefetch - before.prefetch);
+    }
+    if (dut.wait_inflight_o != after.wait_inflight - before.wait_inflight) {
+      return Diverge("wait_inflight_o", dut.wait_inflight_o, after.wait_inflight - before.wait_inflight);
+    }
+    if (dut.wait_mshr_o != after.wait_mshr - before.wait_mshr) {
+      return Diverge("wait_mshr_o", dut.wait_mshr_o, after.wait_mshr - before.wait_mshr);
+    }
+    return true;
+  }
+
+ private:
+  bool Diverge(const char* what, uint64_t rtl, uint64_t model) const {
+    std::printf("rt_cache %s: FAIL: the fast model's cache diverges at cycle %llu: %s RTL %llu, fast model %llu\n",
+                name_, static_cast<unsigned long long>(cycle_), what, static_cast<unsigned long long>(rtl),
+                static_cast<unsigned long long>(model));
+    return false;
+  }
+
+  const char* name_;
+  sim::fast::Cache cache_;
+  uint64_t cycle_ = 0;
+};
+
 template <class Dut>
-bool Run(const char* name, int beats, int mshrs, int targets, bool miss_port, uint64_t count) {
+bool Run(const char* name, int beats, int ways, int mshrs, int targets, bool miss_port, uint64_t count) {
   SimCtrl<Dut> sim;
   Dut& dut = sim.top();
+  FastLockStep fast(name, beats, ways, mshrs, targets, miss_port, false);
   std::mt19937 rng(5);
   std::bernoulli_distribution bubble(0.3), stall(0.2);
   std::uniform_int_distribution<int> latency(1, 30);
@@ -93,7 +167,7 @@ bool Run(const char* name, int beats, int mshrs, int targets, bool miss_port, ui
     const uint32_t tag = free_tags[pick];
     free_tags[pick] = free_tags.back();
     free_tags.pop_back();
-    *r = Request{key, 0x1000u + key * 16u * static_cast<uint32_t>(beats), tag};
+    *r = Request{key, kBase + key * 16u * static_cast<uint32_t>(beats), tag};
   };
 
   auto fail = [&](const char* what) {
@@ -151,6 +225,7 @@ bool Run(const char* name, int beats, int mshrs, int targets, bool miss_port, ui
     dut.mem_req_ready_i = !stall(rng);
     sim.Settle();
     if (dut.resp_valid_o && dut.resp_tag_o != next_tag) return fail("resp_tag_next_o was not the next response's tag");
+    if (!fast.Check(dut, cycle)) return false;
     if (dut.mem_req_valid_o && dut.mem_req_ready_i) {
       in_flight.push_back(
           Beat{cycle + static_cast<uint64_t>(latency(rng)), dut.mem_req_addr_o, dut.mem_req_id_o});
@@ -261,7 +336,8 @@ int64_t PrefetchRun(const char* name, int beats, bool prefetch, uint64_t count) 
   constexpr uint64_t kAhead = 6;  // the prefetcher's lead, in requests
   std::vector<uint32_t> keys(count + kAhead);
   for (auto& k : keys) k = key_dist(key_rng);
-  auto addr_of = [&](uint32_t key) { return 0x1000u + key * 16u * static_cast<uint32_t>(beats); };
+  auto addr_of = [&](uint32_t key) { return kBase + key * 16u * static_cast<uint32_t>(beats); };
+  FastLockStep fast(name, beats, 2, 4, 3, false, true);  // the prefetch configuration's Ways, Mshrs, Targets
   std::map<uint32_t, Request> outstanding;
   std::vector<uint32_t> free_tags;
   for (uint32_t t = 0; t < kTags; ++t) free_tags.push_back(t);
@@ -323,6 +399,7 @@ int64_t PrefetchRun(const char* name, int beats, bool prefetch, uint64_t count) 
     dut.mem_req_ready_i = !stall(rng);
     sim.Settle();
     if (dut.resp_valid_o && dut.resp_tag_o != next_tag) return fail("resp_tag_next_o was not the next response's tag");
+    if (!fast.Check(dut, cycle)) return -1;
     if (!prefetch && dut.req2_ready_o && dut.req2_valid_i) return fail("a prefetch taken with none offered");
     if (dut.mem_req_valid_o && dut.mem_req_ready_i) {
       in_flight.push_back(Beat{cycle + static_cast<uint64_t>(latency(rng)), dut.mem_req_addr_o, dut.mem_req_id_o});
@@ -522,16 +599,17 @@ int main(int argc, char** argv) {
   using namespace kdrt::rtlbench;
   Verilated::commandArgs(argc, argv);
   const uint64_t count = LongRun() ? 2000000 : 200000;
-  // Miss register and target counts must match the verilated parameters.
-  bool ok = Run<Vrt_cache_lines2>("2-beat lines, 4 miss registers", 2, 4, 1, false, count);
-  ok = Run<Vrt_cache_lines3>("3-beat lines, 3 miss registers", 3, 3, 1, false, count) && ok;
-  ok = Run<Vrt_cache_merge2>("2-beat lines, 4 miss registers of 3 targets", 2, 4, 3, false, count) && ok;
-  ok = Run<Vrt_cache_merge3>("3-beat lines, 2 miss registers of 5 targets", 3, 2, 5, false, count) && ok;
-  ok = Run<Vrt_cache_missport>("2-beat lines, 4 miss registers of 3 targets, miss-only port", 2, 4, 3, true, count) &&
+  // Beats, ways, miss registers and targets must match the verilated parameters.
+  bool ok = Run<Vrt_cache_lines2>("2-beat lines, 4 miss registers", 2, 1, 4, 1, false, count);
+  ok = Run<Vrt_cache_lines3>("3-beat lines, 3 miss registers", 3, 1, 3, 1, false, count) && ok;
+  ok = Run<Vrt_cache_merge2>("2-beat lines, 4 miss registers of 3 targets", 2, 1, 4, 3, false, count) && ok;
+  ok = Run<Vrt_cache_merge3>("3-beat lines, 2 miss registers of 5 targets", 3, 1, 2, 5, false, count) && ok;
+  ok = Run<Vrt_cache_missport>("2-beat lines, 4 miss registers of 3 targets, miss-only port", 2, 1, 4, 3, true,
+                               count) &&
        ok;
-  ok = Run<Vrt_cache_ways2>("2-beat lines, 2 ways, 4 miss registers of 3 targets", 2, 4, 3, false, count) && ok;
-  ok = Run<Vrt_cache_ways8>("3-beat lines, 8 ways (one set), 3 miss registers of 2 targets, miss-only port", 3, 3,
-                            2, true, count) &&
+  ok = Run<Vrt_cache_ways2>("2-beat lines, 2 ways, 4 miss registers of 3 targets", 2, 2, 4, 3, false, count) && ok;
+  ok = Run<Vrt_cache_ways8>("3-beat lines, 8 ways (one set), 3 miss registers of 2 targets, miss-only port", 3, 8,
+                            3, 2, true, count) &&
        ok;
   ok = RunPrefetch<Vrt_cache_prefetch>("2-beat lines, 2 ways, 4 miss registers of 3 targets, prefetch port", 2,
                                        count / 4) &&

@@ -8,7 +8,9 @@
 // requester in a hundred to all, acknowledged always to rarely), with a reset
 // in the middle of the run. N = 1, 2, 3, 5 (not powers of two), 32 and 128;
 // every requester must be granted, and at 2 and more a grant must wrap past
-// the last index.
+// the last index. The fast model's arbiter (sim/fast_units.h: fast::RrArb
+// over a fast::ThreadSet) runs beside it on the same requests and
+// acknowledgements and must grant the same requester every cycle.
 #include <cstdio>
 #include <vector>
 
@@ -18,6 +20,7 @@
 #include "Vrt_rr_arb_n3.h"
 #include "Vrt_rr_arb_n32.h"
 #include "Vrt_rr_arb_n5.h"
+#include "sim/fast_units.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -35,6 +38,7 @@ bool Run(unsigned n, uint64_t cycles) {
   sim.Reset();
   Rng rng(11 + n);
   unsigned last = n - 1;
+  sim::fast::RrArb fast(static_cast<int>(n));
   std::vector<bool> req(n);
   std::vector<uint64_t> granted(n);
   uint64_t wraps = 0, held = 0;
@@ -49,10 +53,13 @@ bool Run(unsigned n, uint64_t cycles) {
     if (cycle == cycles / 2) {
       sim.Reset();
       last = n - 1;
+      fast = sim::fast::RrArb(static_cast<int>(n));
     }
+    sim::fast::ThreadSet fast_req(static_cast<int>(n));
     for (unsigned i = 0; i < n; ++i) {
       req[i] = rng.Chance(p_req);
       PutBits(dut.req_i, static_cast<int>(i), 1, req[i]);
+      if (req[i]) fast_req.Set(static_cast<int>(i));
     }
     const bool ack = rng.Chance(p_ack);
     dut.ack_i = ack;
@@ -77,6 +84,13 @@ bool Run(unsigned n, uint64_t cycles) {
                   static_cast<unsigned>(dut.idx_o), valid, idx);
       return false;
     }
+    const int fast_idx = fast.Pick(fast_req);
+    if (fast_idx != (dut.valid_o ? static_cast<int>(dut.idx_o) : -1)) {
+      std::printf("rt_rr_arb N=%u: FAIL at cycle %llu: the fast model's arbiter grants %d, the RTL %d\n", n,
+                  static_cast<unsigned long long>(cycle), fast_idx, dut.valid_o ? static_cast<int>(dut.idx_o) : -1);
+      return false;
+    }
+    if (ack) fast.Ack(fast_idx);
     sim.Tick();
     if (valid && ack) {
       ++granted[idx];
