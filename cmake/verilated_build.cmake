@@ -56,26 +56,3 @@ function(_kdrt_write_verilated_unity target)
   target_sources(${target} PRIVATE ${unity})
   set_source_files_properties(${unity} PROPERTIES OBJECT_DEPENDS "${generated}" COMPILE_OPTIONS "${options}")
 endfunction()
-
-# kdrt_verilate_on_rtl_change(<target> <prefix> <sources...>): call before
-# verilate(<target> ... PREFIX <prefix> SOURCES <sources>). verilate() lists
-# the generated C++ files while configuring, from its last run of Verilator;
-# when an edit of the RTL changes how many files Verilator writes, a build
-# that only reruns Verilator would compile the old list, stale files with it,
-# and fail to link. So an RTL file is a dependency of the configuration, and
-# a configuration that finds one newer than the last run of Verilator for
-# this model has verilate() run Verilator again then (it does when its
-# record of the last command is gone), so that the list is the new one.
-function(kdrt_verilate_on_rtl_change target prefix)
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${ARGN})
-  set(args_file "${CMAKE_CURRENT_BINARY_DIR}/CMakeFiles/${target}.dir/${prefix}.dir/verilator_args.txt")
-  if(NOT EXISTS "${args_file}")
-    return()
-  endif()
-  foreach(src ${ARGN})
-    if("${src}" IS_NEWER_THAN "${args_file}")
-      file(REMOVE "${args_file}")
-      return()
-    endif()
-  endforeach()
-endfunction()
