@@ -19,6 +19,8 @@ namespace kdrt::sim {
 namespace {
 
 using fast::Cache;
+using fast::ListJob;
+using fast::ListUnit;
 using fast::RrArb;
 using fast::ThreadSet;
 
@@ -64,11 +66,6 @@ struct Thread {
   const Step* next = nullptr;  // the path step fetched next (or being fetched)
   const Step* end = nullptr;   // the end of the ray's path
   uint32_t remaining = 0, outstanding = 0;
-};
-
-struct Job {
-  int thread;
-  uint32_t first, count;
 };
 
 // The memory arbiter (rt_rr_arb over the node, list and triangle caches):
@@ -198,8 +195,11 @@ class FastCore {
              spec.image->layout().TriangleLineBytes()),
         th_(threads_), fetch_arb_(threads_), fetch2_arb_(threads_), exit_arb_(threads_), out_arb_(threads_),
         moves_(static_cast<size_t>(threads_)), since_(static_cast<size_t>(threads_), 0),
-        clip_pipe_(threads_, true), trav_pipe_(threads_, true), jobs_(threads_, true),
-        stream_(spec.config[kListStream] != 0), prefetch_(static_cast<uint32_t>(spec.config[kListPrefetch])), lists_(spec.image->lists()), header_(spec.image->header()) {
+        clip_pipe_(threads_, true), trav_pipe_(threads_, true),
+        list_unit_(static_cast<size_t>(threads_), spec.config[kListStream] != 0,
+                   static_cast<uint32_t>(spec.config[kListPrefetch]), spec.image->header().list_offset, kLineBytes,
+                   img::kListEntryBytes),
+        stream_(spec.config[kListStream] != 0), lists_(spec.image->lists()), header_(spec.image->header()) {
     const CoreConfig& cfg = spec.config;
     // Ray setup followed by the clip, the traversal step and the triangle
     // test: the units' latencies as their benches check them.
@@ -230,7 +230,7 @@ class FastCore {
   bool Quiet() const {
     return !record_valid_ && in_state_[kFetch] == 0 && in_state_[kExit] == 0 && in_state_[kDone] == 0 &&
            !(has_pending_ ? in_state_[kFree] > 0 : !queue_.Exhausted(index_)) && n_leaf_done_ == 0 &&
-           !list_req_valid_ && em_left_ == 0 && jobs_.empty() && node_.Quiet() && list_.Quiet() && tri_.Quiet() && !Done();
+           list_unit_.empty() && em_left_ == 0 && node_.Quiet() && list_.Quiet() && tri_.Quiet() && !Done();
   }
   // The first cycle a pipeline delivers (UINT64_MAX: none busy).
   uint64_t NextEvent() const {
@@ -305,20 +305,13 @@ class FastCore {
   std::vector<uint64_t> since_;  // in th_[t].state since this cycle
   uint64_t busy_since_ = 0;
   Ring<Stage> clip_pipe_, trav_pipe_, isect_pipe_{1, true};
-  Ring<Job> jobs_;  // rt_list_unit's FIFO (a thread has one job at most)
-  bool list_req_valid_ = false;
-  Job list_job_{};
-  uint32_t list_k_ = 0;  // entries of list_job_ requested so far
+  // rt_list_unit (its queue holds a job per thread at most).
+  ListUnit list_unit_;
   // ListStream: a request names the job's entries in one list line (at
   // most 8; its count rides in its ListTag), and rt_mem_system's
   // line register hands them to the triangle cache one a cycle: the next
   // entry, how many are left (0: empty) and whose they are.
   bool stream_ = false;
-  // ListPrefetch (rt_list_unit's prefetcher): the jobs it may look at, the
-  // one it is at (pf_off_ places behind the FIFO's oldest) and its entry.
-  uint32_t prefetch_ = 0;
-  size_t pf_off_ = 0;
-  uint32_t pf_k_ = 0;
   uint32_t em_entry_ = 0, em_left_ = 0;
   uint64_t em_thread_ = 0;
   // The harness's side: the ray offered (ray_valid_i), the rays in flight.
@@ -444,7 +437,7 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   fetch2_arb_.Ack(f2);
   if (node_taken & 1u) Move(f1, kWaitNode);
   if (node_taken & 2u) Move(f2, kWaitNode);
-  Job new_job{};  // a leaf's job for the list unit's FIFO
+  ListJob new_job{};  // a leaf's job for the list unit's FIFO
   bool has_new_job = false;
   bool trav_in = false;
   if (node_fire) {
@@ -472,14 +465,10 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   // The list unit's request (registered), the list cache, the triangle
   // cache behind it (its request is the list cache's response).
   Cache::Req lr;
-  uint32_t lr_n = 1;
-  if (list_req_valid_) {
-    const uint64_t addr = header_.list_offset + uint64_t{list_job_.first + list_k_} * img::kListEntryBytes;
-    if (stream_) {
-      const auto in_line = static_cast<uint32_t>((kLineBytes - addr % kLineBytes) / img::kListEntryBytes);
-      lr_n = std::min(in_line, list_job_.count - list_k_);
-    }
-    lr = {true, addr / kLineBytes, ListTag::Make(static_cast<uint32_t>(list_job_.thread), list_job_.first + list_k_, lr_n)};
+  if (list_unit_.req_valid()) {
+    lr = {true, list_unit_.req_addr() / kLineBytes,
+          ListTag::Make(static_cast<uint32_t>(list_unit_.req_job().thread), list_unit_.req_entry(),
+                        list_unit_.req_count())};
   }
   Cache::Req trq;
   if (stream_) {
@@ -497,17 +486,9 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   const bool list_resp_fire = list_.resp_valid() && list_resp_ready;
   const uint64_t list_resp_tag = list_resp_fire ? list_.resp_tag() : 0;
   // The prefetcher's line (rt_list_unit g_prefetch), from the registered
-  // state: the job pf_off_ behind the oldest queued one, at most prefetch_.
+  // state.
   Cache::Req pfr;
-  uint32_t pf_next = 0;
-  bool pf_job_done = false;
-  if (pf_off_ < jobs_.size() && pf_off_ < prefetch_) {
-    const Job& pj = jobs_.at(pf_off_);
-    const uint64_t addr = header_.list_offset + uint64_t{pj.first + pf_k_} * img::kListEntryBytes;
-    pfr = {true, addr / kLineBytes, 0};
-    pf_next = pf_k_ + static_cast<uint32_t>((kLineBytes - addr % kLineBytes) / img::kListEntryBytes);
-    pf_job_done = pf_next >= pj.count;
-  }
+  if (list_unit_.pf_valid()) pfr = {true, list_unit_.pf_addr() / kLineBytes, 0};
   const unsigned list_taken_bits =
       list_.Step(lr, pfr, list_resp_ready, g == 1, resp_cache == 1 ? resp_id : -1);
   const bool list_taken = (list_taken_bits & 1u) != 0;
@@ -523,7 +504,7 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
       em_left_ = ListTag::Count(list_resp_tag);
     }
   }
-  const bool list_fire = list_req_valid_ && list_taken;
+  const bool list_fire = lr.valid && list_taken;
   // rt_perf_events' list_busy: an entry requested or one answered (its
   // triangle taken by the triangle cache).
   const bool entry_fire = trq.valid && tri_taken;
@@ -562,29 +543,9 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   if (retired >= 0) --th_[retired].outstanding;
 
   // The clock edge (the caches' edges were in their steps).
-  // rt_list_unit: the request register and the job FIFO.
-  const bool queued = !jobs_.empty();
-  if (list_fire) {
-    list_k_ += lr_n;
-    if (list_k_ == list_job_.count) list_req_valid_ = false;
-  }
-  // The prefetcher's edge (before the pop below changes the FIFO).
-  const bool queued_pop = queued && !lr.valid;
-  if (queued_pop && pf_off_ == 0) {
-    pf_k_ = 0;  // the walker took its job: on to the next oldest
-  } else {
-    pf_off_ = pf_off_ + (pf_fire && pf_job_done ? 1 : 0) - (queued_pop ? 1 : 0);
-    if (pf_fire) pf_k_ = pf_job_done ? 0 : pf_next;
-  }
-  // queued_pop: a job leaves the FIFO when req_valid_o was low this cycle.
-  if (queued_pop) {
-    list_job_ = jobs_.front();
-    jobs_.pop();
-    list_k_ = 0;
-    list_req_valid_ = true;
-  }
-  // A leaf's job enters the FIFO at this edge (seen from the next cycle).
-  if (has_new_job) jobs_.push(new_job);
+  // rt_list_unit: the request register, the prefetcher and the job FIFO (a
+  // leaf's job enters it at this edge, seen from the next cycle).
+  list_unit_.Edge(list_fire, pf_fire, has_new_job ? &new_job : nullptr);
   if (n_moves_ > 0) {
     const bool was_busy = Busy();
     for (size_t k = 0; k < n_moves_; ++k) {

@@ -1,17 +1,20 @@
 // The fast model's units that have an RTL unit of their own, cycle for cycle:
 // ThreadSet (the arbiters' request vectors), RrArb (rtl/rt_rr_arb.sv) and
-// Cache (rtl/rt_cache.sv). sim/fast_model.cpp composes them into the core;
-// the RTL benches run them in lock-step with the Verilated units
-// (tests/rtl/cache_bench.cpp, tests/rtl/rr_arb_bench.cpp), so that a
-// divergence of the fast model from the RTL names the unit.
+// Cache (rtl/rt_cache.sv) and ListUnit (rtl/rt_list_unit.sv).
+// sim/fast_model.cpp composes them into the core; the RTL benches run them in
+// lock-step with the Verilated units (tests/rtl/cache_bench.cpp,
+// rr_arb_bench.cpp, list_unit_bench.cpp), so that a divergence of the fast
+// model from the RTL names the unit.
 #ifndef KDRT_SIM_FAST_UNITS_H_
 #define KDRT_SIM_FAST_UNITS_H_
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "sim/core_params.h"
+#include "sim/ring.h"
 
 namespace kdrt::sim::fast {
 
@@ -372,6 +375,94 @@ class Cache {
   uint64_t hit_tag_ = 0, del_tag_ = 0;
   int held_idx_ = 0;
   Events ev_;
+};
+
+// A leaf's job for the list unit: its thread, first list entry and entries.
+struct ListJob {
+  int thread = 0;
+  uint32_t first = 0, count = 0;
+};
+
+// rt_list_unit at the level of its registers: the job queue, the walker's
+// request register and the prefetcher (the header comment of
+// rtl/rt_list_unit.sv). Addresses are the entries' byte addresses,
+// list_base + entry_bytes x entry, not cut to the RTL's AddrWidth.
+class ListUnit {
+ public:
+  ListUnit(size_t jobs, bool stream, uint32_t prefetch, uint64_t list_base, uint64_t line_bytes, uint64_t entry_bytes)
+      : jobs_(jobs, true), capacity_(jobs), stream_(stream), prefetch_(prefetch), base_(list_base),
+        line_bytes_(line_bytes), entry_bytes_(entry_bytes) {}
+
+  // Registered outputs, valid before Edge().
+  bool job_ready() const { return jobs_.size() < capacity_; }
+  bool req_valid() const { return req_valid_; }
+  const ListJob& req_job() const { return job_; }
+  uint32_t req_entry() const { return job_.first + k_; }
+  uint64_t req_addr() const { return EntryAddr(req_entry()); }
+  // The entries the request names: one, or (ListStream) the job's left in
+  // the entry's line.
+  uint32_t req_count() const {
+    if (!stream_) return 1;
+    const uint64_t addr = req_addr();
+    const auto in_line = static_cast<uint32_t>((line_bytes_ - addr % line_bytes_) / entry_bytes_);
+    return std::min(in_line, job_.count - k_);
+  }
+  // The prefetcher: at the job pf_off_ places behind the oldest queued one
+  // (at most prefetch_ of them); its entry's address (the line it fetches:
+  // / line bytes).
+  bool pf_valid() const { return pf_off_ < jobs_.size() && pf_off_ < prefetch_; }
+  uint64_t pf_addr() const { return EntryAddr(jobs_.at(pf_off_).first + pf_k_); }
+  bool empty() const { return !req_valid_ && jobs_.empty(); }
+  // list_base_i: stable while a job is queued or requested.
+  void set_list_base(uint64_t list_base) { base_ = list_base; }
+
+  // The clock edge: the request and the prefetch taken this cycle, and the
+  // job pushed (nullptr: none; a job pushed is seen from the next cycle).
+  void Edge(bool req_taken, bool pf_taken, const ListJob* pushed) {
+    const bool queued = !jobs_.empty();
+    const bool was_valid = req_valid_;
+    uint32_t pf_next = 0;
+    bool pf_job_done = false;
+    if (pf_valid()) {
+      const uint64_t addr = pf_addr();
+      pf_next = pf_k_ + static_cast<uint32_t>((line_bytes_ - addr % line_bytes_) / entry_bytes_);
+      pf_job_done = pf_next >= jobs_.at(pf_off_).count;
+    }
+    if (req_taken) {
+      k_ += req_count();
+      if (k_ == job_.count) req_valid_ = false;
+    }
+    // The prefetcher sees the queue as it was: a job leaves it when the
+    // request register was empty this cycle.
+    const bool pop = queued && !was_valid;
+    if (pop && pf_off_ == 0) {
+      pf_k_ = 0;  // the walker took its job: on to the next oldest
+    } else {
+      pf_off_ = pf_off_ + (pf_taken && pf_job_done ? 1 : 0) - (pop ? 1 : 0);
+      if (pf_taken) pf_k_ = pf_job_done ? 0 : pf_next;
+    }
+    if (pop) {
+      job_ = jobs_.front();
+      jobs_.pop();
+      k_ = 0;
+      req_valid_ = true;
+    }
+    if (pushed != nullptr) jobs_.push(*pushed);
+  }
+
+ private:
+  uint64_t EntryAddr(uint32_t entry) const { return base_ + uint64_t{entry} * entry_bytes_; }
+
+  Ring<ListJob> jobs_;
+  size_t capacity_;
+  bool stream_;
+  uint32_t prefetch_;
+  uint64_t base_, line_bytes_, entry_bytes_;
+  bool req_valid_ = false;
+  ListJob job_{};
+  uint32_t k_ = 0;  // entries of job_ requested so far
+  size_t pf_off_ = 0;
+  uint32_t pf_k_ = 0;
 };
 
 }  // namespace kdrt::sim::fast

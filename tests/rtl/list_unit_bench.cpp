@@ -13,7 +13,10 @@
 // queued jobs (not the walker's), one line address a cycle from the job's
 // first entry's line to its last's, then the next job; a pop of its job
 // restarts it at the new oldest one; random backpressure on pf_ready_i.
-// Without ListPrefetch pf_valid_o stays low.
+// Without ListPrefetch pf_valid_o stays low. The fast model's list unit
+// (sim/fast_units.h: fast::ListUnit) runs beside it on the same inputs and
+// must show the same outputs every cycle (job_ready_o, the request and the
+// prefetch with their payloads).
 #include <algorithm>
 #include <cstdio>
 #include <deque>
@@ -22,6 +25,7 @@
 #include "Vrt_list_unit_prefetch.h"
 #include "Vrt_list_unit_prefetch5.h"
 #include "Vrt_list_unit_stream.h"
+#include "sim/fast_units.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -69,6 +73,7 @@ bool Run(const char* name, bool stream, uint32_t prefetch, uint64_t cycles) {
   double p_job = 0.3, p_ready = 0.7;
   uint64_t jobs = 0, requests = 0, entries = 0, full_cycles = 0, multi = 0, prefetches = 0, restarts = 0;
   uint32_t base = 0;
+  sim::fast::ListUnit fast(kJobs, stream, prefetch, base, 32, 4);
   auto fail = [&](const char* what, uint64_t cycle) {
     std::printf("rt_list_unit (%s): FAIL at cycle %llu: %s\n", name, static_cast<unsigned long long>(cycle), what);
     std::printf("  model: %zu jobs queued, walker %s tag %u addr 0x%05x left %u\n", m.queue.size(),
@@ -121,6 +126,20 @@ bool Run(const char* name, bool stream, uint32_t prefetch, uint64_t cycles) {
     full_cycles += m.queue.size() == kJobs;
     const bool job_fire = dut.job_valid_i && dut.job_ready_o;
     const bool req_fire = dut.req_valid_o && dut.req_ready_i;
+    // The fast model's list unit, on the same inputs.
+    fast.set_list_base(base);
+    if (fast.job_ready() != static_cast<bool>(dut.job_ready_o)) return fail("the fast model's job_ready", cycle);
+    if (fast.req_valid() != static_cast<bool>(dut.req_valid_o)) return fail("the fast model's req_valid", cycle);
+    if (fast.req_valid() && (static_cast<uint32_t>(fast.req_job().thread) != dut.req_tag_o ||
+                             (fast.req_addr() & kAddrMask) != dut.req_addr_o || fast.req_count() != dut.req_count_o)) {
+      return fail("the fast model's request payload", cycle);
+    }
+    if (fast.pf_valid() != static_cast<bool>(dut.pf_valid_o)) return fail("the fast model's pf_valid", cycle);
+    if (fast.pf_valid() && (fast.pf_addr() & kAddrMask & ~31u) != dut.pf_addr_o) {
+      return fail("the fast model's pf_addr", cycle);
+    }
+    const sim::fast::ListJob fast_job{static_cast<int>(pending.tag), pending.first, pending.count};
+    fast.Edge(req_fire, pf_fire, job_fire ? &fast_job : nullptr);
     sim.Tick();
     // The model's edge: the prefetcher and the walker (they see the queue as
     // it was), then the push.
