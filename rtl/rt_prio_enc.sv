@@ -12,10 +12,9 @@
 // - Words = 1, for simulation: the lowest set bit isolated as
 //   req & (~req + 1), bit k of the index the OR over the positions whose bit
 //   k is one. A simulator evaluates these as a few operations on whole
-//   words, where the tree takes one per node (in the default core the
-//   encoders of the caches' miss registers and the thread arbiters, with the
-//   tree, took about 40 % of the RTL simulation's time). As hardware the add
-//   is a carry chain, which is why synthesis takes the tree.
+//   words, where the tree takes one per node (evaluated as trees, the
+//   default core's encoders halve its simulation speed). As hardware the
+//   add is a carry chain, which is why synthesis takes the tree.
 // Words defaults to 1 under Verilator and 0 elsewhere (Yosys); the bench
 // (tests/rtl/prio_enc_bench.cpp) checks both against one C++ model at every
 // width it runs.
