@@ -489,8 +489,8 @@ module rt_cache #(
       mshr_sent_q[send_idx] <= send_beat + 1'b1;
       mshr_unsent_q[send_idx] <= 32'(send_beat) + 1 < LineBeats;
     end
-    if (deliver) mshr_out_q[done_idx] <= done_out + 1'b1;
     if (deliver) begin
+      mshr_out_q[done_idx] <= done_out + 1'b1;
       data_q[done_line] <= done_data;
       key_q[done_line] <= done_key;
       del_data_q <= done_data;
