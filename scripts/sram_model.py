@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """SRAM macro model at 180 nm: area (um^2) and read access time (ns) of a
-single-port synchronous SRAM macro, from the coefficients in
-scripts/sram_model.txt (docs/physical.md, "SRAM macros").
+two-port synchronous SRAM macro (one read and one write a cycle), from the
+coefficients in scripts/sram_model.txt (written by scripts/sram_fit.py;
+docs/physical.md, "SRAM macros").
 
 Usage: scripts/sram_model.py WORDS WIDTH   prints {"words", "width",
        "area_um2", "access_ns", "source": "model"} as JSON."""

@@ -68,6 +68,22 @@ synth_sram_list() {
   echo "$srams" | awk 'NF { print $1, $2, $3 }'
 }
 
+# synth_sram_outputs MEM_DUMP: one line per kept array, "name wire" for each
+# wire its read data drives (the RD_DATA connection, slices dropped).
+synth_sram_outputs() {
+  awk '
+    /^ *cell \$mem_v2 / { name = "" }
+    /parameter .MEMID / { name = $3; gsub(/["\\]/, "", name) }
+    /^ *connect .RD_DATA / && name != "" {
+      for (i = 3; i <= NF; i++) {
+        if ($i !~ /^\\/) continue
+        w = substr($i, 2)
+        if (!((name, w) in seen)) { seen[name, w] = 1; print name, w }
+      }
+    }
+  ' "$1"
+}
+
 # synth_sram_json LIST: the "srams" entries (name, words, width) of a
 # synth_sram_list output.
 synth_sram_json() {

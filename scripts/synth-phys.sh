@@ -24,12 +24,18 @@
 #                report in DIR
 #   --sram       the caches' line arrays (rt_cache's data_q, as in
 #                synth-unit.sh) are kept as SRAM macros: cut out of the
-#                netlist, their pins become ideal ports of the timed netlist,
-#                and "srams" lists them (name, words, width); their own area
-#                is not in area_um2
+#                netlist, their pins become ports of the timed netlist, and
+#                "srams" lists them (name, words, width); their own area is
+#                not in area_um2. A macro's data output arrives at its read
+#                access time from scripts/sram_model.py (an input delay), so
+#                a path through the logic it feeds carries the macro's
+#                access; its inputs are ideal (no setup time)
 #   --glue       UNIT's own logic only: its submodule instances are cut
 #                out (their pins become ideal ports of the timed netlist),
 #                e.g. rt_core's thread table without the units it feeds
+#   --input-delay PORT=NS  the input port PORT (all its bits) arrives NS
+#                after the clock (repeatable), e.g. with --glue an SRAM
+#                instance's data output: u_ray_ram.rdata_o=8.48
 #   NAME=VALUE   parameters of UNIT, e.g. E=8 M=23 (fp32), N=32
 #   YOSYS=path, STA=path, LIBERTY=path: other tools or another Liberty file.
 # On failure: exit status 1, one line saying what failed on stderr (then the
@@ -42,7 +48,7 @@ usage() {
 die() { echo "synth-phys: $*" >&2; exit 1; }
 bad_usage() { echo "synth-phys: $*" >&2; echo "usage: $0 [--period NS] [--json OUT.json] [--keep DIR] [--sram] [--glue] UNIT [NAME=VALUE...]   (--help)" >&2; exit 2; }
 
-period=5 out="" keep="" sram=0 glue=0
+period=5 out="" keep="" sram=0 glue=0 delays=()
 while [ "$#" -gt 0 ]; do
   case "$1" in
     -h | --help) usage; exit 0 ;;
@@ -54,6 +60,7 @@ while [ "$#" -gt 0 ]; do
     --keep=*) keep="${1#*=}"; shift ;;
     --sram) sram=1; shift ;;
     --glue) glue=1; shift ;;
+    --input-delay) [ "$#" -ge 2 ] || bad_usage "--input-delay needs PORT=NS"; delays+=("$2"); shift 2 ;;
     --) shift; break ;;
     -*) bad_usage "$1: unknown option" ;;
     *) break ;;
@@ -67,6 +74,11 @@ if ! [[ "$period" =~ ^[0-9]+(\.[0-9]+)?$ ]] || ! awk -v p="$period" 'BEGIN { exi
   bad_usage "--period $period: expected a positive number of ns, e.g. 5 or 2.5"
 fi
 period_ps=$(awk -v p="$period" 'BEGIN { printf "%d", p * 1000 + 0.5 }')
+for d in ${delays[@]+"${delays[@]}"}; do
+  if ! [[ "$d" =~ ^[A-Za-z_][A-Za-z0-9_.]*=[0-9]+(\.[0-9]+)?$ ]]; then
+    bad_usage "--input-delay $d: expected PORT=NS, e.g. u_ray_ram.rdata_o=8.48"
+  fi
+done
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 RTL="$ROOT/rtl"
 # shellcheck source=synth-common.sh
@@ -179,6 +191,21 @@ if [ "$sram" = 1 ]; then
   # an SRAM macro can be).
   srams=$(synth_sram_list synth-phys "$unit" "$WORK/unit.mem")
   srams_json=$(synth_sram_json "$srams")
+  # Each macro's data output wires (its RD_DATA; expose -cut made them input
+  # ports named <wire>.i) arrive at the macro's access time.
+  while read -r mem port; do
+    [ -n "$mem" ] || continue
+    words=$(echo "$srams" | awk -v m="$mem" '$1 == m { print $2 }')
+    width=$(echo "$srams" | awk -v m="$mem" '$1 == m { print $3 }')
+    access=$(python3 "$ROOT/scripts/sram_model.py" "$words" "$width" | sed -n 's/.*"access_ns": \([0-9.]*\).*/\1/p')
+    [ -n "$access" ] || die "$unit: no access time from scripts/sram_model.py for $mem ($words x $width)"
+    delays+=("$port.i=$access")
+  done <<< "$(synth_sram_outputs "$WORK/unit.mem")"
+  while read -r mem _; do
+    [ -n "$mem" ] || continue
+    synth_sram_outputs "$WORK/unit.mem" | awk -v m="$mem" '$1 == m { f = 1 } END { exit !f }' \
+      || die "$unit: --sram: the read data of $mem drives no named wire (its access time cannot be put on a port)"
+  done <<< "$srams"
 fi
 
 if [ "$empty" = 1 ]; then
@@ -199,11 +226,19 @@ if {[llength [get_ports -quiet clk_i]] > 0} {
 }
 if {[llength \$inputs] > 0} { set_input_delay 0 -clock clk \$inputs }
 if {[llength [all_outputs]] > 0} { set_output_delay 0 -clock clk [all_outputs] }
+$(for d in ${delays[@]+"${delays[@]}"}; do
+  printf 'set p [get_ports -quiet {%s %s[*]}]\n' "${d%=*}" "${d%=*}"
+  printf 'if {[llength $p] == 0} { puts "synth-phys: no input port %s"; set missing 1 }\n' "${d%=*}"
+  printf 'set_input_delay %s -clock clk $p\n' "${d#*=}"
+done)
 report_checks -path_delay max -path_group clk -digits 3 > $WORK/timing.rpt
-puts "synth-phys: sta done"
+if {![info exists missing]} { puts "synth-phys: sta done" }
 EOF
 if ! "$STA" -no_init -no_splash -exit "$WORK/sta.tcl" > "$WORK/sta.log" 2>&1 \
     || ! grep -q '^synth-phys: sta done' "$WORK/sta.log"; then
+  if grep -q '^synth-phys: no input port' "$WORK/sta.log"; then
+    die "$unit: --input-delay: $(grep -m1 '^synth-phys: no input port' "$WORK/sta.log" | sed 's/^synth-phys: //') in the netlist"
+  fi
   echo "synth-phys: $unit: OpenSTA failed; the end of its log:" >&2
   tail -n 20 "$WORK/sta.log" >&2
   exit 1
@@ -227,6 +262,7 @@ json=$(printf '{"unit": "%s", "params": {%s}, "library": "%s", "area_um2": %s, "
 if [ -n "$keep" ]; then
   mkdir -p "$keep"
   cp "$ylog" "$net" "$WORK/unit.stat" "$WORK/abc.constr" "$WORK/sta.log" "$WORK/timing.rpt" "$keep/"
+  if [ -e "$WORK/unit.mem" ]; then cp "$WORK/unit.mem" "$keep/"; fi
   # The kept OpenSTA script reads the kept netlist: `sta DIR/sta.tcl` redoes it.
   keep_abs="$(cd "$keep" && pwd)"
   sed "s|$WORK|$keep_abs|g" "$WORK/sta.tcl" > "$keep/sta.tcl"

@@ -52,7 +52,7 @@ SYNTH_PHYS = os.path.join(ROOT, "scripts", "synth-phys.sh")
 DEFAULT_LIB = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib"
 # Changes when scripts/synth-phys.sh's flow gives other numbers for the same
 # RTL (part of every cache key).
-FLOW_VERSION = "1"
+FLOW_VERSION = "2"
 # Units whose memories are SRAM macros: the caches' line arrays (as in
 # scripts/synth.sh), the memories of rt_ram_1r1w: the stacks' (in
 # rt_leaf_exit, 360,448 bits in the default core, far beyond what flip-flops
@@ -95,6 +95,22 @@ def atomic_write(path, text):
 
 def sha(text):
     return hashlib.sha1(text.encode()).hexdigest()
+
+
+def sources_hash():
+    """FNV-1a (64 bits) of rtl/*.sv in name order and scripts/sram_model.txt,
+    each as its name, a 0 byte, its bytes and a 0 byte: what core.json was
+    made from. kdrt sim (sim/phys.cpp SourcesHash) computes the same and
+    reports no physical figures when it differs."""
+    paths = [os.path.join(RTL, f) for f in sorted(os.listdir(RTL)) if f.endswith(".sv")]
+    paths.append(sram_model.COEFFS)
+    h = 0xCBF29CE484222325
+    for p in paths:
+        with open(p, "rb") as f:
+            data = os.path.basename(p).encode() + b"\0" + f.read() + b"\0"
+        for b in data:
+            h = ((h ^ b) * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    return f"{h:016x}"
 
 
 def file_hash(paths):
@@ -182,6 +198,10 @@ class Flow:
         self.rtl_hash = file_hash(rtl_files)
         self.unit_hashes = {}
         self.lib_hash = file_hash([self.lib])
+        # The macros' access times are input delays of the units that hold
+        # them (and of rt_core's own logic at its memories' outputs).
+        self.model_hash = file_hash([sram_model.COEFFS])
+        self.glue_delays = []  # ["<instance>.rdata_o=<ns>"] for rt_core's own logic
         self.mem_bytes = int(args.mem_gb * 1e9)
         self.timeout_s = args.time_min * 60
 
@@ -193,8 +213,10 @@ class Flow:
     def key(self, unit, params, glue, sram):
         p = " ".join(f"{k}={v}" for k, v in sorted(params.items()))
         rtl = self.rtl_hash if glue else self.unit_hash(unit)
+        model = self.model_hash if (sram or glue) else "-"
+        delays = " ".join(self.glue_delays) if glue else ""
         return sha(f"flow={FLOW_VERSION} unit={unit} glue={glue} sram={sram} period={self.args.period} "
-                   f"params={p} rtl={rtl} lib={self.lib_hash}")[:16]
+                   f"params={p} rtl={rtl} lib={self.lib_hash} sram_model={model} delays={delays}")[:16]
 
     def instances(self, params):
         """rt_core's unit instances for PARAMS: [(instance, module, {param: value})]."""
@@ -264,6 +286,8 @@ class Flow:
             cmd.append("--sram")
         if glue:
             cmd.append("--glue")
+            for d in self.glue_delays:
+                cmd += ["--input-delay", d]
         cmd += [unit] + [f"{k2}={v}" for k2, v in params.items()]
         logp = os.path.join(self.logs_dir, f"{unit}-{k}.log")
         log(f"{label}: synthesizing")
@@ -350,6 +374,8 @@ def main():
         if not shutil.which(tool):
             die(f"{tool}: command not found (apt-get install {pkg})")
     coeffs = sram_model.load()
+    # Taken before the first synthesis: an edit during the run leaves core.json stale, not mislabelled.
+    sources = sources_hash()
 
     os.makedirs(args.out, exist_ok=True)
     core_json = os.path.join(args.out, "core.json")
@@ -359,6 +385,11 @@ def main():
     t0 = time.time()
 
     insts = flow.instances(params)
+    # rt_core's own memories (rt_ram_1r1w instances: macros and nothing else)
+    # deliver their words at the macro's access time to the logic around them.
+    flow.glue_delays = sorted(
+        f"{name}.rdata_o={sram_model.macro(p['Words'], p['Width'], coeffs)['access_ns']}"
+        for name, module, p in insts if module == "rt_ram_1r1w")
     notes = []
     groups = {}  # (module, params) -> {"instances": [...], "params": {...}}
     dropped = set()
@@ -479,14 +510,19 @@ def main():
                 clock, critical = s["access_ns"], t["unit"]
     crit_logic = max(u["crit_ns"] for u in units)
     notes.append("scope per_unit: each unit timed alone, its ports ideal (input and output delay 0, no "
-                 "driving cell, no load), no wires; clock_ns is the slowest unit or SRAM macro, the paths "
+                 "driving cell, no load), no wires, except an SRAM macro's data output, which arrives at the "
+                 "macro's access time (the logic after a macro is timed with it, in the unit that holds the "
+                 "macro and in rt_core's own logic); clock_ns is the slowest unit or SRAM macro; the paths "
                  "between units are not timed")
-    notes.append(f"logic alone: {crit_logic} ns")
+    worst = max(units, key=lambda u: u["crit_ns"])
+    notes.append(f"slowest path in a unit: {crit_logic} ns ({worst['unit']}: {worst['crit_path']['from']} to "
+                 f"{worst['crit_path']['to']}; a path from an SRAM macro includes its access time)")
     if sram_area:
         notes.append(f"SRAM macros: area and access time from the model in scripts/sram_model.txt "
-                     f"({coeffs['model']}: 5 V GF180MCU macros at 1.8 V; docs/physical.md, 'SRAM macros'), "
+                     f"({coeffs['model']}: IHP SG13G2 130 nm two-port macros scaled to 180 nm; docs/physical.md, "
+                     f"'SRAM macros'), "
                      f"not synthesized; their area is not in logic")
-    core = {"library": "osu018",
+    core = {"library": "osu018", "sources_fnv1a64": sources,
             "period_target_ns": args.period if args.period != int(args.period) else int(args.period),
             "scope": "per_unit", "params": params, "clock_ns": clock, "critical_unit": critical,
             "area_um2": {"logic": logic, "sram": sram_area, "total": logic + sram_area},

@@ -3,7 +3,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -227,6 +229,31 @@ nlohmann::json PhysicalBlock(const nlohmann::json& core, const std::string& path
   return p;
 }
 
+std::string SourcesHash() {
+  const fs::path root(KDRT_SIM_SOURCE_DIR);
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(root / "rtl")) {
+    if (e.path().extension() == ".sv") files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end(),
+            [](const fs::path& a, const fs::path& b) { return a.filename().string() < b.filename().string(); });
+  files.push_back(root / "scripts" / "sram_model.txt");
+  uint64_t h = 0xCBF29CE484222325ull;
+  auto add = [&h](const std::string& bytes) {
+    for (unsigned char c : bytes) h = (h ^ c) * 0x100000001B3ull;
+  };
+  for (const fs::path& f : files) {
+    std::ifstream in(f, std::ios::binary);
+    if (!in) throw InputError(f.string() + ": cannot be read (a source of the synthesis)");
+    std::ostringstream text;
+    text << in.rdbuf();
+    add(f.filename().string() + '\0' + text.str() + '\0');
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
 nlohmann::json ReadCoreJson(const CoreConfig& config) {
   const std::string path = PhysPath(config);
   std::error_code ec;
@@ -240,12 +267,26 @@ nlohmann::json ReadCoreJson(const CoreConfig& config) {
     Bad(path, std::string("not valid JSON: ") + e.what());
   }
   CheckCoreJson(core, path, config);
+  if (core.value("sources_fnv1a64", std::string()) != SourcesHash()) return nullptr;
   return core;
 }
 
 std::string NoSynthesisLine(const CoreConfig& config) {
+  std::error_code ec;
+  if (fs::exists(PhysPath(config), ec)) {
+    return "physical: the synthesis of this configuration (" + PhysPath(config) +
+           ") was made from other sources (rtl/*.sv or scripts/sram_model.txt changed since), so its figures "
+           "are another design's; run 'kdrt synth' with the same scene and options again (units whose RTL did "
+           "not change stay cached), or 'kdrt sim --synth'";
+  }
   return "physical: no synthesis of this configuration (" + config.Key() +
          "); run 'kdrt synth' with the same scene and options, or 'kdrt sim --synth' (takes minutes)";
+}
+
+std::string SynthesisState(const CoreConfig& config, const nlohmann::json& core) {
+  if (!core.is_null()) return "synthesized";
+  std::error_code ec;
+  return fs::exists(PhysPath(config), ec) ? "made from other sources than this tree's" : "none yet";
 }
 
 void PrintPhysical(const nlohmann::json& p, const CoreConfig& config, std::FILE* out) {

@@ -56,13 +56,27 @@ std::vector<NodeScale> PaperNodes();
 nlohmann::json PhysicalBlock(const nlohmann::json& core, const std::string& path, const CoreConfig& config,
                              double cycles_per_ray);
 
+// What a synthesis was made from: FNV-1a (64 bits, 16 hex digits) of the
+// source tree's rtl/*.sv in name order and scripts/sram_model.txt, each as its
+// name, a 0 byte, its bytes and a 0 byte; scripts/synth_core.py writes the
+// same into core.json as "sources_fnv1a64".
+std::string SourcesHash();
+
 // Reads and checks <PhysPath(config)> (InputError naming it when it is not
-// JSON or not a core.json of `config`); a null json when there is none.
+// JSON or not a core.json of `config`); a null json when there is none, or
+// when it was made from other sources than this tree's (its
+// sources_fnv1a64 is not SourcesHash(): the RTL or the SRAM model changed
+// since, so its figures are another design's).
 nlohmann::json ReadCoreJson(const CoreConfig& config);
 
 // "physical: no synthesis of this configuration (<key>); run ..." for the
-// table and stderr.
+// table and stderr, or, when PhysPath(config) exists but was made from other
+// sources, a line saying so.
 std::string NoSynthesisLine(const CoreConfig& config);
+
+// For --which: "synthesized", "none yet" or "made from other sources than
+// this tree's" (`core`: what ReadCoreJson returned).
+std::string SynthesisState(const CoreConfig& config, const nlohmann::json& core);
 
 // The physical block as table lines (`physical` null: NoSynthesisLine).
 void PrintPhysical(const nlohmann::json& physical, const CoreConfig& config, std::FILE* out);

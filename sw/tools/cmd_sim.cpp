@@ -118,7 +118,8 @@ int RunSim(SimArgs args) {
     std::printf("executable     %s (%s%s)\n", loc.path.c_str(), state,
                 loc.quick ? "; a quick build, one unit at -O1 without waveforms: KDRT_QUICK_MODELS" : "");
     std::printf("synthesis      %s (%s)\n", sim::PhysPath(choice.config).c_str(),
-                core_json.is_null() ? "none yet: kdrt synth, or kdrt sim --synth" : "synthesized");
+                core_json.is_null() ? (sim::SynthesisState(choice.config, core_json) + ": kdrt synth, or kdrt sim --synth").c_str()
+                                    : "synthesized");
     return 0;
   }
   if (args.build_model) {

@@ -92,11 +92,14 @@ int RunSynth(const SynthArgs& args) {
   if (args.which) {
     const nlohmann::json core = sim::ReadCoreJson(config);
     std::printf("model          %s\n", config.Key().c_str());
-    std::printf("synthesis      %s (%s)\n", path.c_str(), core.is_null() ? "none yet" : "synthesized");
+    std::printf("synthesis      %s (%s)\n", path.c_str(), sim::SynthesisState(config, core).c_str());
     return 0;
   }
   nlohmann::json core = args.force ? nlohmann::json(nullptr) : sim::ReadCoreJson(config);
   if (core.is_null()) {
+    if (!args.force && sim::SynthesisState(config, core) != "none yet") {
+      std::fprintf(stderr, "kdrt synth: %s\n", sim::NoSynthesisLine(config).c_str());
+    }
     std::fprintf(stderr, "kdrt synth: synthesizing every unit of %s on the OSU 0.18 um library (takes minutes)\n",
                  config.Key().c_str());
     sim::SynthesizeCore(config, args.period_ns, args.jobs);

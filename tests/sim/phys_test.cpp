@@ -130,6 +130,58 @@ TEST_F(PhysCli, BrokenCoreJsonIsRefused) {
   EXPECT_NE(r.output.find("synthesized with"), std::string::npos) << r.output;
 }
 
+// A core.json of this configuration made from other sources (its
+// sources_fnv1a64 is not this tree's) is another design's figures: "physical"
+// is null, the line says why, kdrt synth --which says so; with this tree's
+// hash the same file is reported. The script and kdrt hash alike.
+TEST_F(PhysCli, SynthesisOfOtherSourcesIsNotReported) {
+  const RunResult w = Kdrt(std::string("sim ") + kScene + " --which-model");
+  ASSERT_EQ(w.exit_code, 0) << w.output;
+  const size_t at = w.output.find("model          ");
+  ASSERT_NE(at, std::string::npos) << w.output;
+  const std::string key = w.output.substr(at + 15, w.output.find(' ', at + 15) - at - 15);
+  fs::create_directories(fs::path(PhysDir()) / key);
+  const std::string core = (fs::path(PhysDir()) / key / "core.json").string();
+  nlohmann::json j = {{"library", "osu018"},
+                      {"clock_ns", 5.1},
+                      {"critical_unit", "rt_x"},
+                      {"area_um2", {{"logic", 1}, {"sram", 0}, {"total", 1}}},
+                      {"units", {{{"unit", "rt_x"}, {"count", 1}, {"area_um2", 1}, {"flip_flops", 0},
+                                  {"crit_ns", 5.1}}}}};
+  const sim::CoreConfig c = sim::DefaultConfig(fp::Format{8, 23});
+  for (int i = 0; i < sim::kParamCount; ++i) j["params"][sim::kCoreParams[i].sv_name] = c.value[i];
+  const std::string tree = sim::SourcesHash();
+  ASSERT_EQ(tree.size(), 16u);
+  for (const std::string& hash : {tree, std::string("0123456789abcdef"), std::string()}) {
+    if (hash.empty()) {
+      j.erase("sources_fnv1a64");
+    } else {
+      j["sources_fnv1a64"] = hash;
+    }
+    std::ofstream(core) << j.dump();
+    const RunResult r = Kdrt(std::string("sim ") + kScene + " --model fast -o " + Path("x.png") + " --json " +
+                             Path("x.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const nlohmann::json out = ReadJsonFile(Path("x.json"));
+    const RunResult y = Kdrt("synth gen:room:300 --which");
+    ASSERT_EQ(y.exit_code, 0) << y.output;
+    if (hash == tree) {
+      ASSERT_TRUE(out["physical"].is_object()) << r.output;
+      EXPECT_DOUBLE_EQ(out["physical"]["clock_ns"].get<double>(), 5.1);
+      EXPECT_NE(y.output.find("(synthesized)"), std::string::npos) << y.output;
+    } else {
+      EXPECT_TRUE(out["physical"].is_null()) << hash;
+      EXPECT_NE(r.output.find(core + ") was made from other sources"), std::string::npos) << r.output;
+      EXPECT_NE(y.output.find("(made from other sources than this tree's)"), std::string::npos) << y.output;
+    }
+  }
+  const RunResult py = testing::RunCommand(
+      "python3 -B -c 'import sys; sys.path.insert(0, \"" KDRT_SOURCE_DIR "/scripts\"); import synth_core; "
+      "print(synth_core.sources_hash())'");
+  ASSERT_EQ(py.exit_code, 0) << py.output;
+  EXPECT_EQ(py.output, tree + "\n");
+}
+
 // kdrt synth takes kdrt sim's scene and core options and arrives at the same
 // model key (the one a synthesis is stored under), scene-sized or not.
 TEST_F(PhysCli, SynthComputesTheKeyKdrtSimRuns) {

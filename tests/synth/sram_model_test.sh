@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # scripts/sram_model.py: area and access time grow with the words and the
 # width; every macro says "source": "model"; bad arguments are refused.
+# scripts/sram_model.txt is what scripts/sram_fit.py makes of the published
+# macros, and no published macro (scaled to 180 nm) is faster than the model.
 # Usage: sram_model_test.sh SOURCE_DIR
 set -euo pipefail
 model="$1/scripts/sram_model.py"
@@ -27,4 +29,16 @@ done
 rc=0
 "$model" 0 8 2> /dev/null || rc=$?
 [ "$rc" = 2 ] || fail "0 words: exit status $rc, expected 2"
+"$1/scripts/sram_fit.py" --check || fail "scripts/sram_model.txt is not the fit of scripts/sram_macros.tsv"
+python3 - "$1/scripts" <<'PY' || fail "a published macro is faster than the model"
+import math, sys
+sys.path.insert(0, sys.argv[1])
+import sram_fit, sram_model
+c = sram_model.load()
+for r in sram_fit.read_macros():
+    model = sram_model.macro(r["words"], r["width"], c)["access_ns"]
+    scaled = r["access"] * sram_fit.DELAY_180_FROM_130
+    if scaled > model + 1e-3:
+        sys.exit(f"{r['name']}: {scaled:.3f} ns at 180 nm, the model {model:.3f} ns")
+PY
 echo "sram_model_test: ok"

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # scripts/synth-phys.sh on a small unit: rt_rr_arb at N=8 gives a JSON with a
 # positive area and critical path, N=32 a larger area; a Liberty file that is
-# not there gives exit status 1, the reason, and no JSON.
+# not there gives exit status 1, the reason, and no JSON. A memory kept as an
+# SRAM macro (--sram) delivers its data at the model's access time: the
+# critical path starts at it and is at least that long; --input-delay does
+# the same for a named port, and a port that is not there is refused.
 # Usage: synth_phys_test.sh SOURCE_DIR
 set -euo pipefail
 src="$1"
@@ -34,4 +37,19 @@ rc=0
 "$src/scripts/synth-phys.sh" rt_rr_arb N=eight 2> "$work/err" || rc=$?
 [ "$rc" = 2 ] || fail "N=eight: exit status $rc, expected 2"
 grep -q "N=eight: expected NAME=VALUE" "$work/err" || fail "N=eight: message '$(cat "$work/err")'"
+"$src/scripts/synth-phys.sh" --sram --json "$work/ram.json" rt_ram_1r1w Words=256 Width=16
+access=$(python3 "$src/scripts/sram_model.py" 256 16 | sed -n 's/.*"access_ns": \([0-9.]*\).*/\1/p')
+crit=$(field "$work/ram.json" crit_ns)
+grep -q '"from": "rdata_q.i\[' "$work/ram.json" || fail "--sram: the path does not start at the macro: $(cat "$work/ram.json")"
+awk -v c="$crit" -v a="$access" 'BEGIN { exit !(c >= a) }' || fail "--sram: crit_ns $crit below the macro's access $access"
+"$src/scripts/synth-phys.sh" --input-delay req_i=3.5 --json "$work/d.json" rt_rr_arb N=8
+crit=$(field "$work/d.json" crit_ns)
+awk -v c="$crit" 'BEGIN { exit !(c >= 3.5) }' || fail "--input-delay 3.5: crit_ns $crit"
+rc=0
+"$src/scripts/synth-phys.sh" --input-delay no_such_port=1 rt_rr_arb N=8 2> "$work/err" || rc=$?
+[ "$rc" = 1 ] || fail "--input-delay of a missing port: exit status $rc, expected 1"
+grep -q "no input port no_such_port" "$work/err" || fail "--input-delay of a missing port: message '$(cat "$work/err")'"
+rc=0
+"$src/scripts/synth-phys.sh" --input-delay req_i rt_rr_arb N=8 2> "$work/err" || rc=$?
+[ "$rc" = 2 ] || fail "--input-delay req_i: exit status $rc, expected 2"
 echo "synth_phys_test: ok (N=8: $a8 um2, N=32: $a32 um2)"
