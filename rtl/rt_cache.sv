@@ -59,6 +59,9 @@ module rt_cache #(
   parameter int unsigned Targets = 1,  // requests a miss register answers (the first and merged ones)
   parameter bit MissPort = 1'b0,       // the second, miss-only request port
   parameter bit PrefetchPort = 1'b0,   // the second port takes prefetches (MissPort = 0)
+  // the words of one SRAM macro: the line array and the merged requests are
+  // banked so that their access time is a small macro's (rt_ram_banked)
+  parameter int unsigned BankWords = 128,
   localparam int unsigned LineBits = LineBeats * 128,
   localparam int unsigned IdxW = (Lines > 1) ? $clog2(Lines) : 1,
   localparam int unsigned Sets = Lines / Ways,
@@ -113,7 +116,6 @@ module rt_cache #(
 
   localparam int unsigned CntW = BeatW + 1;
 
-  logic [LineBits-1:0] data_q [Lines];
   logic [KeyWidth-1:0] key_q [Lines];
   logic [Lines-1:0]    valid_q;
 
@@ -137,7 +139,7 @@ module rt_cache #(
   // hit is taken while a miss is being answered; the response port shows the
   // completed miss first.
   logic                hit_valid_q, del_valid_q;
-  logic [LineBits-1:0] hit_data_q, del_data_q;
+  logic [LineBits-1:0] hit_data, del_data_q;
   logic [TagWidth-1:0] hit_tag_q, del_tag_q;
 
   // Per-register conditions and the lowest-numbered register of each kind
@@ -247,6 +249,14 @@ module rt_cache #(
     assign done_data[128*b +: 128] = fwd_q ? fwd_data_q : rdata;
   end
 
+  // The lines: a memory with the ports an SRAM compiler gives, read at a
+  // hit (held on resp_data_o until the next hit's read) and written by the
+  // completed line.
+  rt_ram_banked #(.Words(Lines), .Width(LineBits), .BankWords(BankWords)) u_data (
+    .clk_i, .we_i(deliver), .waddr_i(done_line), .wdata_i(done_data),
+    .re_i(accept && lookup_hit), .raddr_i(hit_line), .rdata_o(hit_data)
+  );
+
   // The merged requests: one memory of a word per target slot, register m's
   // slot k at m * Targets + k, read at the next cycle's completed register
   // and the slot it answers then.
@@ -263,7 +273,7 @@ module rt_cache #(
   end
   assign tgt_waddr = TgtIdxW'(32'(tgt_wr_mshr) * Targets + 32'(tgt_wr_slot));
   assign tgt_raddr = TgtIdxW'(32'(done_idx_next) * Targets + 32'(out_next_at_done));
-  rt_ram_1r1w #(.Words(TgtWords), .Width(TagWidth)) u_tgt_ram (
+  rt_ram_banked #(.Words(TgtWords), .Width(TagWidth), .BankWords(BankWords)) u_tgt_ram (
     .clk_i, .we_i(m_take), .waddr_i(tgt_waddr), .wdata_i(m_tag), .re_i(1'b1), .raddr_i(tgt_raddr),
     .rdata_o(tgt_rdata)
   );
@@ -440,7 +450,7 @@ module rt_cache #(
                                           : ((accept && lookup_hit) ? req_tag_i : hit_tag_q);
 
   assign resp_valid_o = hit_valid_q || del_valid_q;
-  assign resp_data_o = del_valid_q ? del_data_q : hit_data_q;
+  assign resp_data_o = del_valid_q ? del_data_q : hit_data;
   assign resp_tag_o = del_valid_q ? del_tag_q : hit_tag_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -467,10 +477,7 @@ module rt_cache #(
   end
 
   always_ff @(posedge clk_i) begin
-    if (accept && lookup_hit) begin
-      hit_data_q <= data_q[hit_line];
-      hit_tag_q <= req_tag_i;
-    end
+    if (accept && lookup_hit) hit_tag_q <= req_tag_i;
     if (m_take) begin
       if (m_join) begin
         mshr_cnt_q[m_join_idx] <= m_join_cnt + 1'b1;
@@ -491,7 +498,6 @@ module rt_cache #(
     end
     if (deliver) begin
       mshr_out_q[done_idx] <= done_out + 1'b1;
-      data_q[done_line] <= done_data;
       key_q[done_line] <= done_key;
       del_data_q <= done_data;
       del_tag_q <= done_tag;

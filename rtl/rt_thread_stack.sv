@@ -1,7 +1,8 @@
 // rt_thread_stack: one traversal stack of StackDepth entries per thread, the
-// entries of all threads in one memory (rt_ram_1r1w: one write port, one
-// registered read port, Threads * StackDepth words, thread t's entry k at
-// t * StackDepth + k), a stack pointer per thread beside it.
+// entries of all threads in one memory (rt_ram_banked: one write port, one
+// registered read port, Threads * StackDepth words in banks of BankWords,
+// thread t's entry k at t * StackDepth + k), a stack pointer per thread
+// beside it.
 //
 // The top entry is read a cycle ahead: read_idx_i names the thread whose top
 // the next cycle looks at, and from then on top_o and top_empty_o are that
@@ -21,6 +22,9 @@ module rt_thread_stack #(
   parameter int unsigned Threads = 32,
   parameter int unsigned StackDepth = 32,
   parameter int unsigned Width = 8,
+  // the words of one SRAM macro (a power of two): the memory is banked so
+  // that its access time is a small macro's (docs/physical.md)
+  parameter int unsigned BankWords = 128,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1,
   localparam int unsigned Words = Threads * StackDepth,
   localparam int unsigned AddrW = (Words > 1) ? $clog2(Words) : 1
@@ -72,7 +76,7 @@ module rt_thread_stack #(
     else if (read_cleared) read_sp_next = '0;
   end
 
-  rt_ram_1r1w #(.Words(Words), .Width(Width)) u_ram (
+  rt_ram_banked #(.Words(Words), .Width(Width), .BankWords(BankWords)) u_ram (
     .clk_i, .we_i(push_ok), .waddr_i(addr(push_idx_i, push_sp)), .wdata_i(push_data_i),
     .re_i(read_sp_next != '0 && !read_pushed), .raddr_i(addr(read_idx_i, read_sp_next - 1'b1)),
     .rdata_o(ram_rdata)

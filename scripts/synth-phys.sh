@@ -172,6 +172,20 @@ if ! "$YOSYS" -q -l "$ylog" -p "
   exit 1
 fi
 
+# A port named after a generate block's instance (g_bank[0].u_ram.rdata_q.i)
+# is an escaped identifier with brackets, which OpenSTA 2019 cannot take in
+# its delay commands: such ports are renamed with _ for [ and ].
+python3 - "$net" << 'PY'
+import re, sys
+path = sys.argv[1]
+text = open(path).read()
+ports = set(re.findall(r"^\s*(?:input|output|inout)\s+(?:\[[^\]]*\]\s*)?(\\\S*[\[\]]\S*)\s*;", text, re.M))
+if ports:
+    table = str.maketrans("[]", "__")
+    text = re.sub(r"\\\S+", lambda m: m.group(0).translate(table) if m.group(0) in ports else m.group(0), text)
+    open(path, "w").write(text)
+PY
+
 cells=$({ grep -m1 -E 'Number of cells:' "$WORK/unit.stat" || true; } | awk '{print $NF}')
 area=$({ grep -m1 -E 'Chip area for module' "$WORK/unit.stat" || true; } | awk '{printf "%.0f", $NF}')
 ffs=$(awk -v ff="$ff_cells" '
@@ -227,15 +241,17 @@ if {[llength [get_ports -quiet clk_i]] > 0} {
 if {[llength \$inputs] > 0} { set_input_delay 0 -clock clk \$inputs }
 if {[llength [all_outputs]] > 0} { set_output_delay 0 -clock clk [all_outputs] }
 $(for d in ${delays[@]+"${delays[@]}"}; do
-  printf 'set p [get_ports -quiet {%s %s[*]}]\n' "${d%=*}" "${d%=*}"
-  printf 'if {[llength $p] == 0} { puts "synth-phys: no input port %s"; set missing 1 }\n' "${d%=*}"
+  # Brackets in a port's name became _ (above).
+  esc=$(printf '%s' "${d%=*}" | tr '[]' '__')
+  printf 'set p [get_ports -quiet {%s %s[*]}]\n' "$esc" "$esc"
+  printf 'if {[llength $p] == 0} { puts "synth-phys: no input port %s"; set missing 1 }\n' "$esc"
   printf 'set_input_delay %s -clock clk $p\n' "${d#*=}"
 done)
 report_checks -path_delay max -path_group clk -digits 3 > $WORK/timing.rpt
 if {![info exists missing]} { puts "synth-phys: sta done" }
 EOF
 if ! "$STA" -no_init -no_splash -exit "$WORK/sta.tcl" > "$WORK/sta.log" 2>&1 \
-    || ! grep -q '^synth-phys: sta done' "$WORK/sta.log"; then
+    || ! grep -q '^synth-phys: sta done' "$WORK/sta.log" || grep -q '^Error' "$WORK/sta.log"; then
   if grep -q '^synth-phys: no input port' "$WORK/sta.log"; then
     die "$unit: --input-delay: $(grep -m1 '^synth-phys: no input port' "$WORK/sta.log" | sed 's/^synth-phys: //') in the netlist"
   fi

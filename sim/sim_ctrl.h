@@ -36,22 +36,25 @@ namespace detail {
 template <class T, class = void>
 struct HasClock : std::false_type {};
 template <class T>
-struct HasClock<T, std::void_t<decltype(std::declval<T&>().clk_i), decltype(std::declval<T&>().rst_ni)>>
-    : std::true_type {};
+struct HasClock<T, std::void_t<decltype(std::declval<T&>().clk_i)>> : std::true_type {};
+template <class T, class = void>
+struct HasReset : std::false_type {};
+template <class T>
+struct HasReset<T, std::void_t<decltype(std::declval<T&>().rst_ni)>> : std::true_type {};
 }  // namespace detail
 
 template <class Top>
 class SimCtrl {
  public:
   static constexpr bool kClocked = detail::HasClock<Top>::value;
+  // A clocked top without rst_ni (a memory) has nothing to reset.
+  static constexpr bool kResettable = kClocked && detail::HasReset<Top>::value;
 
   SimCtrl() : context_(std::make_unique<VerilatedContext>()) {
     context_->traceEverOn(true);
     top_ = std::make_unique<Top>(context_.get(), "top");
-    if constexpr (kClocked) {
-      top_->clk_i = 0;
-      top_->rst_ni = 0;
-    }
+    if constexpr (kClocked) top_->clk_i = 0;
+    if constexpr (kResettable) top_->rst_ni = 0;
   }
   ~SimCtrl() { CloseTrace(); top_->final(); }
   SimCtrl(const SimCtrl&) = delete;
@@ -91,9 +94,10 @@ class SimCtrl {
 #endif
   void EnableDump(bool on) { dump_ = on; }
 
-  // Holds rst_ni low for `cycles` cycles (the cycle counter does not run).
+  // Holds rst_ni low for `cycles` cycles (the cycle counter does not run); a
+  // top without rst_ni is left as it is.
   void Reset(int cycles = 4) {
-    if constexpr (kClocked) {
+    if constexpr (kResettable) {
       top_->rst_ni = 0;
       for (int i = 0; i < cycles; ++i) {
         Settle();

@@ -5,12 +5,14 @@
 // dropped, a pop of an empty stack ignored, and when a clear, a push and a
 // pop name the same thread in one cycle: the pop wins over the push, the push
 // over the clear. Random clears, pushes and pops with idle cycles, in regimes
-// that fill the stacks, drain them, or mix.
+// that fill the stacks, drain them, or mix. The memory in one bank and in
+// banks of 4 words (BankWords = 4: 15 words in 4 banks, the last of 3).
 #include <array>
 #include <cstdio>
 #include <vector>
 
 #include "Vrt_thread_stack.h"
+#include "Vrt_thread_stack_banks.h"
 #include "sim/sim_ctrl.h"
 #include "tests/rtl/isect_bench_util.h"
 
@@ -25,9 +27,10 @@ constexpr unsigned kThreads = 3;
 constexpr size_t kDepth = 5;
 constexpr uint32_t kMask = 0xFFFFF;
 
-bool Run(uint64_t cycles) {
-  SimCtrl<Vrt_thread_stack> sim;
-  Vrt_thread_stack& dut = sim.top();
+template <class Dut>
+bool Run(const char* name, uint64_t cycles) {
+  SimCtrl<Dut> sim;
+  Dut& dut = sim.top();
   dut.clear_i = 0;
   dut.push_i = 0;
   dut.pop_i = 0;
@@ -59,9 +62,9 @@ bool Run(uint64_t cycles) {
     const bool full = model[ui].size() == kDepth, empty = model[oi].empty();
     if (static_cast<bool>(dut.push_full_o) != full || static_cast<bool>(dut.top_empty_o) != empty ||
         (!empty && dut.top_o != model[oi].back())) {
-      std::printf("rt_thread_stack: FAIL at cycle %llu: push thread %u (%zu entries): full %d; pop thread %u "
+      std::printf("rt_thread_stack (%s): FAIL at cycle %llu: push thread %u (%zu entries): full %d; pop thread %u "
                   "(%zu entries): empty %d top 0x%05x, model 0x%05x\n",
-                  static_cast<unsigned long long>(cycle), ui, model[ui].size(), dut.push_full_o, oi,
+                  name, static_cast<unsigned long long>(cycle), ui, model[ui].size(), dut.push_full_o, oi,
                   model[oi].size(), dut.top_empty_o, dut.top_o, empty ? 0 : model[oi].back());
       return false;
     }
@@ -87,13 +90,14 @@ bool Run(uint64_t cycles) {
     oi = ri;
   }
   if (full_seen == 0 || dropped == 0 || collisions == 0 || read_changed == 0) {
-    std::printf("rt_thread_stack: FAIL: the traffic never filled a stack, never collided or never changed a "
-                "stack in the cycle it was read\n");
+    std::printf("rt_thread_stack (%s): FAIL: the traffic never filled a stack, never collided or never changed a "
+                "stack in the cycle it was read\n",
+                name);
     return false;
   }
-  std::printf("rt_thread_stack: PASS (%llu cycles, %llu pushes, %llu pops, %llu pushes onto full stacks, "
+  std::printf("rt_thread_stack (%s): PASS (%llu cycles, %llu pushes, %llu pops, %llu pushes onto full stacks, "
               "%llu same-thread collisions, %llu stacks changed as they were read)\n",
-              static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(pushes),
+              name, static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(pushes),
               static_cast<unsigned long long>(pops), static_cast<unsigned long long>(dropped),
               static_cast<unsigned long long>(collisions), static_cast<unsigned long long>(read_changed));
   return true;
@@ -105,7 +109,9 @@ bool Run(uint64_t cycles) {
 int main(int argc, char** argv) {
   using namespace kdrt::rtlbench;
   Verilated::commandArgs(argc, argv);
-  const bool ok = Run(LongRun() ? 10000000 : 1000000);
+  const uint64_t cycles = LongRun() ? 10000000 : 1000000;
+  bool ok = Run<Vrt_thread_stack>("one bank", cycles);
+  ok = Run<Vrt_thread_stack_banks>("BankWords 4", cycles) && ok;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }
