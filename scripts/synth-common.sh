@@ -26,12 +26,13 @@ synth_parse_params() {
   done
 }
 
-# The arrays kept as SRAM macros with --sram: the caches' line arrays
-# (rt_cache's data_q) and the memories of rt_ram_1r1w (sram_q: the traversal
-# stacks), each with one write port and one read port registered inside the
-# array, as an SRAM compiler's macro reads. Every other memory (tags, thread
-# tables: read in the cycle they are addressed) is built from flip-flops.
-SYNTH_SRAM_LINES='t:$mem_v2 n:*data_q n:*sram_q %u %i'
+# The arrays kept as SRAM macros with --sram: the memories of rt_ram_1r1w
+# (sram_q: the caches' lines, the stacks, the miss registers' buffers; banked
+# by rt_ram_banked), each with one write port and one read port registered
+# inside the array, as an SRAM compiler's macro reads. Every other memory
+# (tags, thread tables: read in the cycle they are addressed) is built from
+# flip-flops.
+SYNTH_SRAM_LINES='t:$mem_v2 n:*sram_q %i'
 
 # synth_sram_flow UNIT: Yosys' `synth -flatten` up to its fine stage with the
 # line arrays left out of memory_map (the rest of Yosys 0.23's fine stage:

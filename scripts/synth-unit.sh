@@ -14,9 +14,9 @@
 #        parameters, e.g. TravE=8 TravM=23, listed in the JSON's "params";
 #        YOSYS=path to use another yosys; LTP_OUT=path to keep Yosys' longest
 #        path, the nets from start to end, as `ltp -noff` prints it)
-# --sram: the caches' line arrays (rt_cache's data_q) and rt_ram_1r1w's arrays
-#        (the stacks; one write port, one read port registered inside the
-#        array, as an SRAM macro reads) are
+# --sram: rt_ram_1r1w's arrays (the caches' lines, the stacks; one write
+#        port, one read port registered inside the array, as an SRAM macro
+#        reads) are
 #        kept as memories instead of being built from flip-flops and
 #        multiplexers; "cells", "flip_flops" and "depth" are then the logic
 #        around them, and the JSON adds "sram_bits" and "srams" (name, words,

@@ -449,7 +449,7 @@ namespace kdrt::trade {
 namespace {
 
 // scripts/synth-unit.sh --sram on a small cache (and LTP_OUT on the first
-// run): the line array (Lines x 256 bits, read through its registered port)
+// run): the line array (Lines x 256 bits, an rt_ram_banked of one bank)
 // and the miss registers' memories (rt_ram_1r1w) are kept as SRAM macros and
 // listed with their sizes, and the logic around them has fewer cells and at
 // least their bits fewer flip-flops than the same cache synthesized from
@@ -477,10 +477,10 @@ TEST(SynthUnit, SramKeepsTheCacheLinesAsAMacro) {
   // (a memory per beat) and its requests (1 target of 2 bits).
   const long long bits = 4 * 256 + 2 * 128 + 2;
   EXPECT_EQ(number(s, "sram_bits"), bits) << s;
-  for (const char* macro : {"{\"name\": \"data_q\", \"words\": 4, \"width\": 256}",
+  for (const char* macro : {"{\"name\": \"u_data.g_one.u_ram.sram_q\", \"words\": 4, \"width\": 256}",
                             "{\"name\": \"g_beat_ram[0].u_ram.sram_q\", \"words\": 1, \"width\": 128}",
                             "{\"name\": \"g_beat_ram[1].u_ram.sram_q\", \"words\": 1, \"width\": 128}",
-                            "{\"name\": \"u_tgt_ram.sram_q\", \"words\": 1, \"width\": 2}"}) {
+                            "{\"name\": \"u_tgt_ram.g_one.u_ram.sram_q\", \"words\": 1, \"width\": 2}"}) {
     EXPECT_NE(s.find(macro), std::string::npos) << macro << "\n" << s;
   }
   EXPECT_LT(number(s, "cells"), number(f, "cells"));
