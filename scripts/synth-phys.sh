@@ -22,8 +22,8 @@
 #                standard output
 #   --keep DIR   keep the Yosys log, the netlist, the OpenSTA script and its
 #                report in DIR
-#   --sram       the caches' line arrays (rt_cache's data_q, as in
-#                synth-unit.sh) are kept as SRAM macros: cut out of the
+#   --sram       the arrays of rt_ram_1r1w (as in synth-unit.sh: the
+#                caches' lines, the stacks) are kept as SRAM macros: cut out of the
 #                netlist, their pins become ports of the timed netlist, and
 #                "srams" lists them (name, words, width); their own area is
 #                not in area_um2. A macro's data output arrives at its read
