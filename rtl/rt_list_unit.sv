@@ -21,9 +21,12 @@
 // (rt_cache PrefetchPort), so a job's lines are fetched while the jobs
 // before it are requested.
 //
-// The queue (rt_fifo in a memory, Ram = 1) and the prefetcher's copy of the jobs' first entry
-// and count (rt_ram_1r1w, read at the next cycle's prefetch job, forwarding
-// a job pushed in the cycle it is read) are memories with an SRAM's ports.
+// The queue (rt_fifo in a memory, Ram = 1) and the prefetcher's copy of the
+// jobs (rt_ram_1r1w, read at the next cycle's prefetch job, forwarding a job
+// pushed in the cycle it is read) are memories with an SRAM's ports; both
+// hold a job's first entry's byte address (list_base_i + ListEntryBytes *
+// first, made as the job is pushed: list_base_i is stable while busy) and
+// its count, so that no addition of the base follows a read.
 `default_nettype none
 
 module rt_list_unit #(
@@ -61,18 +64,21 @@ module rt_list_unit #(
   localparam int unsigned LineOffW = $clog2(LineBytes);
 
   // ------------------------------------------------------------ job queue
+  // A job is queued with its first entry's address (list_base_i is stable
+  // while busy), so a job read from the queue needs no addition.
   logic                  queued_valid, queued_pop;
   logic [TagWidth-1:0]   queued_tag;
-  logic [31:0]           queued_first;
+  logic [AddrWidth-1:0]  queued_addr, job_addr;
   logic [CountWidth-1:0] queued_count;
-  rt_fifo #(.Width(TagWidth + 32 + CountWidth), .Depth(Jobs), .Ram(1)) u_jobs (
+  assign job_addr = list_base_i + (AddrWidth'(job_first_i) << EntryShift);
+  rt_fifo #(.Width(TagWidth + AddrWidth + CountWidth), .Depth(Jobs), .Ram(1)) u_jobs (
     .clk_i, .rst_ni,
     .in_valid_i (job_valid_i),
     .in_ready_o (job_ready_o),
-    .in_data_i  ({job_tag_i, job_first_i, job_count_i}),
+    .in_data_i  ({job_tag_i, job_addr, job_count_i}),
     .out_valid_o(queued_valid),
     .out_ready_i(!req_valid_o),
-    .out_data_o ({queued_tag, queued_first, queued_count})
+    .out_data_o ({queued_tag, queued_addr, queued_count})
   );
   assign queued_pop = queued_valid && !req_valid_o;
 
@@ -104,7 +110,7 @@ module rt_list_unit #(
   always_ff @(posedge clk_i) begin
     if (queued_pop) begin
       req_tag_o <= queued_tag;
-      req_addr_o <= list_base_i + (AddrWidth'(queued_first) << EntryShift);
+      req_addr_o <= queued_addr;
       left_q <= queued_count;
     end else if (req_fire) begin
       req_addr_o <= req_addr_o + (AddrWidth'(req_count_o) << EntryShift);
@@ -118,14 +124,16 @@ module rt_list_unit #(
     // pops in order: its write and read positions are counted here too).
     localparam int unsigned JobW = (Jobs > 1) ? $clog2(Jobs) : 1;
     localparam int unsigned NumW = $clog2(Jobs + 1);
-    logic [AddrWidth-1:0]  pf_first;
+    logic [AddrWidth-1:0]  pf_base;   // the job's first entry's address
     logic [CountWidth-1:0] pf_count;
     logic [JobW-1:0]       wr_q, rd_q, rd_d;
     logic [NumW-1:0]       queued_q;  // jobs in the FIFO
     logic [NumW-1:0]       pf_off_q, pf_off_d;  // the prefetcher's job: rd_q + pf_off_q
     logic [CountWidth-1:0] pf_k_q;    // its next entry
-    logic                  push, pf_fire, pf_job_done;
-    logic [JobW-1:0]       pf_idx_next;
+    logic                  push, pf_fire, pf_job_done, pf_keep, pf_adv;
+    logic [NumW-1:0]       pf_off_base;
+    logic [JobW-1:0]       pf_idx_next, pf_idx_stay, pf_idx_adv;
+    logic [CountWidth:0]   pf_left;  // entries of the job from pf_k_q on
     logic [AddrWidth-1:0]  pf_entry_addr;
     logic [CountWidth-1:0] pf_k_next;
     logic [LineOffW-EntryShift:0] pf_in_line;
@@ -134,18 +142,35 @@ module rt_list_unit #(
     endfunction
     assign push = job_valid_i && job_ready_o;
     assign pf_valid_o = pf_off_q < queued_q && 32'(pf_off_q) < ListPrefetch;
-    assign pf_entry_addr = list_base_i + (AddrWidth'(pf_first) << EntryShift) +
-                           (AddrWidth'(pf_k_q) << EntryShift);
+    assign pf_entry_addr = pf_base + (AddrWidth'(pf_k_q) << EntryShift);
     assign pf_addr_o = {pf_entry_addr[AddrWidth-1:LineOffW], {LineOffW{1'b0}}};
     assign pf_in_line = (LineOffW - EntryShift + 1)'((LineBytes - 32'(pf_entry_addr[LineOffW-1:0])) >> EntryShift);
-    assign pf_k_next = pf_k_q + CountWidth'(pf_in_line);
+    // pf_k_q plus each count of entries a line can hold, chosen by the
+    // line's: the sums start with the register, not after the job's word.
+    localparam int unsigned MaxInLine = LineBytes >> EntryShift;
+    logic [CountWidth-1:0] pf_k_plus [MaxInLine + 1];
+    for (genvar c = 0; c <= MaxInLine; c++) begin : g_k_plus
+      assign pf_k_plus[c] = pf_k_q + CountWidth'(c);
+    end
+    assign pf_k_next = pf_k_plus[pf_in_line];
     assign pf_fire = pf_valid_o && pf_ready_i;
-    assign pf_job_done = pf_k_next >= pf_count;
+    // pf_k_next >= pf_count, as the entries left against the line's: pf_k_q
+    // is 0 or below pf_count (it moves on only while the job is not done),
+    // so the subtraction starts with the job's word instead of after the
+    // entry address.
+    assign pf_left = {1'b0, pf_count} - {1'b0, pf_k_q};
+    assign pf_job_done = pf_left <= (CountWidth + 1)'(pf_in_line);
     // The walker taking the prefetcher's job moves it on to the next oldest.
+    // The next job's index and forwarding compare are made for both
+    // outcomes of this job's end and chosen by it (it is known last).
     assign rd_d = queued_pop ? wrap_inc(rd_q) : rd_q;
-    assign pf_off_d = (queued_pop && pf_off_q == '0) ? pf_off_q
-                                                    : pf_off_q + NumW'(pf_fire && pf_job_done) - NumW'(queued_pop);
-    assign pf_idx_next = JobW'((32'(rd_d) + 32'(pf_off_d)) % Jobs);
+    assign pf_keep = queued_pop && pf_off_q == '0;
+    assign pf_off_base = pf_keep ? pf_off_q : pf_off_q - NumW'(queued_pop);
+    assign pf_adv = !pf_keep && pf_fire && pf_job_done;
+    assign pf_off_d = pf_off_base + NumW'(pf_adv);
+    assign pf_idx_stay = JobW'((32'(rd_d) + 32'(pf_off_base)) % Jobs);
+    assign pf_idx_adv = JobW'((32'(rd_d) + 32'(pf_off_base) + 1) % Jobs);
+    assign pf_idx_next = pf_adv ? pf_idx_adv : pf_idx_stay;
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         wr_q <= '0;
@@ -170,14 +195,14 @@ module rt_list_unit #(
     logic                            pf_fwd_q;
     logic [AddrWidth+CountWidth-1:0] pf_fwd_data_q, pf_rdata;
     rt_ram_1r1w #(.Words(Jobs), .Width(AddrWidth + CountWidth)) u_pf_jobs (
-      .clk_i, .we_i(push), .waddr_i(wr_q), .wdata_i({AddrWidth'(job_first_i), job_count_i}),
+      .clk_i, .we_i(push), .waddr_i(wr_q), .wdata_i({job_addr, job_count_i}),
       .re_i(1'b1), .raddr_i(pf_idx_next), .rdata_o(pf_rdata)
     );
     always_ff @(posedge clk_i) begin
-      pf_fwd_q <= push && wr_q == pf_idx_next;
-      if (push) pf_fwd_data_q <= {AddrWidth'(job_first_i), job_count_i};
+      pf_fwd_q <= push && (pf_adv ? wr_q == pf_idx_adv : wr_q == pf_idx_stay);
+      if (push) pf_fwd_data_q <= {job_addr, job_count_i};
     end
-    assign {pf_first, pf_count} = pf_fwd_q ? pf_fwd_data_q : pf_rdata;
+    assign {pf_base, pf_count} = pf_fwd_q ? pf_fwd_data_q : pf_rdata;
   end else begin : g_no_prefetch
     assign pf_valid_o = 1'b0;
     assign pf_addr_o = '0;
@@ -186,12 +211,6 @@ module rt_list_unit #(
     assign unused_pf = pf_ready_i;
     /* verilator lint_on UNUSEDSIGNAL */
   end
-
-  // Entry index bits above AddrWidth are unused.
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic unused_bits;
-  assign unused_bits = ^queued_first;
-  /* verilator lint_on UNUSEDSIGNAL */
 
   rt_stream_check #(.Width(TagWidth + 32 + CountWidth), .Name("rt_list_unit job")) u_job_check (
     .clk_i, .rst_ni, .valid_i(job_valid_i), .ready_i(job_ready_o),
