@@ -55,8 +55,9 @@ module rt_thread_stack #(
   logic [Width-1:0] fwd_data_q;    // the entry pushed onto it as it was read
   logic [Width-1:0] ram_rdata;
 
-  logic [SpW-1:0] push_sp, pop_sp, read_sp, read_sp_next;
-  logic           push_ok, pop_ok, push_wins, read_popped, read_pushed, read_cleared;
+  logic [SpW-1:0] push_sp, pop_sp, read_sp, read_sp_next, read_sp_kept;
+  logic           push_ok, pop_ok, push_wins, read_popped, read_pushed;
+  logic           read_same, kept_pushed, kept_cleared;
   assign push_sp = sp_q[push_idx_i];
   assign pop_sp = sp_q[top_idx_q];
   assign read_sp = sp_q[read_idx_i];
@@ -66,19 +67,29 @@ module rt_thread_stack #(
   assign push_wins = push_ok && !(pop_ok && push_idx_i == top_idx_q);
 
   // The read thread's pointer after this cycle, with the events' priorities.
-  assign read_popped = pop_ok && top_idx_q == read_idx_i;
-  assign read_pushed = !read_popped && push_ok && push_idx_i == read_idx_i;
-  assign read_cleared = !read_popped && !read_pushed && clear_i && clear_idx_i == read_idx_i;
+  // The pop is known last (the caller decides it from top_o), so the read is
+  // made for both outcomes, popped and kept, and chosen by it.
+  assign read_same = top_idx_q == read_idx_i;
+  assign read_popped = pop_ok && read_same;
+  assign kept_pushed = push_ok && push_idx_i == read_idx_i;
+  assign kept_cleared = !kept_pushed && clear_i && clear_idx_i == read_idx_i;
+  assign read_pushed = !read_popped && kept_pushed;
   always_comb begin
-    read_sp_next = read_sp;
-    if (read_popped) read_sp_next = read_sp - 1'b1;
-    else if (read_pushed) read_sp_next = read_sp + 1'b1;
-    else if (read_cleared) read_sp_next = '0;
+    read_sp_kept = read_sp;
+    if (kept_pushed) read_sp_kept = read_sp + 1'b1;
+    else if (kept_cleared) read_sp_kept = '0;
   end
+  assign read_sp_next = read_popped ? read_sp - 1'b1 : read_sp_kept;
 
+  logic             re_popped, re_kept;
+  logic [AddrW-1:0] raddr_popped, raddr_kept;
+  assign re_popped = read_sp != SpW'(1);
+  assign raddr_popped = addr(read_idx_i, read_sp - SpW'(2));
+  assign re_kept = read_sp_kept != '0 && !kept_pushed;
+  assign raddr_kept = addr(read_idx_i, read_sp_kept - 1'b1);
   rt_ram_banked #(.Words(Words), .Width(Width), .BankWords(BankWords)) u_ram (
     .clk_i, .we_i(push_ok), .waddr_i(addr(push_idx_i, push_sp)), .wdata_i(push_data_i),
-    .re_i(read_sp_next != '0 && !read_pushed), .raddr_i(addr(read_idx_i, read_sp_next - 1'b1)),
+    .re_i(read_popped ? re_popped : re_kept), .raddr_i(read_popped ? raddr_popped : raddr_kept),
     .rdata_o(ram_rdata)
   );
 
