@@ -232,8 +232,12 @@ nlohmann::json PhysicalBlock(const nlohmann::json& core, const std::string& path
 std::string SourcesHash() {
   const fs::path root(KDRT_SIM_SOURCE_DIR);
   std::vector<fs::path> files;
-  for (const fs::directory_entry& e : fs::directory_iterator(root / "rtl")) {
-    if (e.path().extension() == ".sv") files.push_back(e.path());
+  std::error_code ec;
+  for (fs::directory_iterator it(root / "rtl", ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().extension() == ".sv") files.push_back(it->path());
+  }
+  if (ec || files.empty()) {
+    throw InputError((root / "rtl").string() + ": cannot be read (the RTL a synthesis is checked against)");
   }
   std::sort(files.begin(), files.end(),
             [](const fs::path& a, const fs::path& b) { return a.filename().string() < b.filename().string(); });
