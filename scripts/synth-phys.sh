@@ -207,18 +207,14 @@ if [ "$sram" = 1 ]; then
   srams_json=$(synth_sram_json "$srams")
   # Each macro's data output wires (its RD_DATA; expose -cut made them input
   # ports named <wire>.i) arrive at the macro's access time.
-  while read -r mem port; do
+  outputs=$(synth_sram_outputs "$WORK/unit.mem")
+  while read -r mem words width; do
     [ -n "$mem" ] || continue
-    words=$(echo "$srams" | awk -v m="$mem" '$1 == m { print $2 }')
-    width=$(echo "$srams" | awk -v m="$mem" '$1 == m { print $3 }')
+    ports=$(echo "$outputs" | awk -v m="$mem" '$1 == m { print $2 }')
+    [ -n "$ports" ] || die "$unit: --sram: the read data of $mem drives no named wire (its access time cannot be put on a port)"
     access=$(python3 "$ROOT/scripts/sram_model.py" "$words" "$width" | sed -n 's/.*"access_ns": \([0-9.]*\).*/\1/p')
     [ -n "$access" ] || die "$unit: no access time from scripts/sram_model.py for $mem ($words x $width)"
-    delays+=("$port.i=$access")
-  done <<< "$(synth_sram_outputs "$WORK/unit.mem")"
-  while read -r mem _; do
-    [ -n "$mem" ] || continue
-    synth_sram_outputs "$WORK/unit.mem" | awk -v m="$mem" '$1 == m { f = 1 } END { exit !f }' \
-      || die "$unit: --sram: the read data of $mem drives no named wire (its access time cannot be put on a port)"
+    for port in $ports; do delays+=("$port.i=$access"); done
   done <<< "$srams"
 fi
 

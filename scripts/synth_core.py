@@ -508,14 +508,13 @@ def main():
             sram_area += s["area_um2"] * s["count"] * count
             if s["access_ns"] > clock:
                 clock, critical = s["access_ns"], t["unit"]
-    crit_logic = max(u["crit_ns"] for u in units)
+    worst = max(units, key=lambda u: u["crit_ns"])
     notes.append("scope per_unit: each unit timed alone, its ports ideal (input and output delay 0, no "
                  "driving cell, no load), no wires, except an SRAM macro's data output, which arrives at the "
                  "macro's access time (the logic after a macro is timed with it, in the unit that holds the "
                  "macro and in rt_core's own logic); clock_ns is the slowest unit or SRAM macro; the paths "
                  "between units are not timed")
-    worst = max(units, key=lambda u: u["crit_ns"])
-    notes.append(f"slowest path in a unit: {crit_logic} ns ({worst['unit']}: {worst['crit_path']['from']} to "
+    notes.append(f"slowest path in a unit: {worst['crit_ns']} ns ({worst['unit']}: {worst['crit_path']['from']} to "
                  f"{worst['crit_path']['to']}; a path from an SRAM macro includes its access time)")
     if sram_area:
         notes.append(f"SRAM macros: area and access time from the model in scripts/sram_model.txt "

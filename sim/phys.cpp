@@ -275,9 +275,13 @@ nlohmann::json ReadCoreJson(const CoreConfig& config) {
   return core;
 }
 
-std::string NoSynthesisLine(const CoreConfig& config) {
+bool HasSynthesisOfOtherSources(const CoreConfig& config) {
   std::error_code ec;
-  if (fs::exists(PhysPath(config), ec)) {
+  return fs::exists(PhysPath(config), ec);
+}
+
+std::string NoSynthesisLine(const CoreConfig& config) {
+  if (HasSynthesisOfOtherSources(config)) {
     return "physical: the synthesis of this configuration (" + PhysPath(config) +
            ") was made from other sources (rtl/*.sv or scripts/sram_model.txt changed since), so its figures "
            "are another design's; run 'kdrt synth' with the same scene and options again (units whose RTL did "
@@ -289,8 +293,7 @@ std::string NoSynthesisLine(const CoreConfig& config) {
 
 std::string SynthesisState(const CoreConfig& config, const nlohmann::json& core) {
   if (!core.is_null()) return "synthesized";
-  std::error_code ec;
-  return fs::exists(PhysPath(config), ec) ? "made from other sources than this tree's" : "none yet";
+  return HasSynthesisOfOtherSources(config) ? "made from other sources than this tree's" : "none yet";
 }
 
 void PrintPhysical(const nlohmann::json& p, const CoreConfig& config, std::FILE* out) {

@@ -74,6 +74,10 @@ nlohmann::json ReadCoreJson(const CoreConfig& config);
 // sources, a line saying so.
 std::string NoSynthesisLine(const CoreConfig& config);
 
+// After ReadCoreJson returned null for `config`: whether its core.json is
+// there all the same, made from other sources than this tree's.
+bool HasSynthesisOfOtherSources(const CoreConfig& config);
+
 // For --which: "synthesized", "none yet" or "made from other sources than
 // this tree's" (`core`: what ReadCoreJson returned).
 std::string SynthesisState(const CoreConfig& config, const nlohmann::json& core);

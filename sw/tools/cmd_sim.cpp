@@ -117,9 +117,9 @@ int RunSim(SimArgs args) {
     const char* state = loc.built ? "built" : loc.stale ? "out of date: sources changed, rebuilt on use" : "not built yet";
     std::printf("executable     %s (%s%s)\n", loc.path.c_str(), state,
                 loc.quick ? "; a quick build, one unit at -O1 without waveforms: KDRT_QUICK_MODELS" : "");
-    std::printf("synthesis      %s (%s)\n", sim::PhysPath(choice.config).c_str(),
-                core_json.is_null() ? (sim::SynthesisState(choice.config, core_json) + ": kdrt synth, or kdrt sim --synth").c_str()
-                                    : "synthesized");
+    std::string synthesis = sim::SynthesisState(choice.config, core_json);
+    if (core_json.is_null()) synthesis += ": kdrt synth, or kdrt sim --synth";
+    std::printf("synthesis      %s (%s)\n", sim::PhysPath(choice.config).c_str(), synthesis.c_str());
     return 0;
   }
   if (args.build_model) {

@@ -97,7 +97,7 @@ int RunSynth(const SynthArgs& args) {
   }
   nlohmann::json core = args.force ? nlohmann::json(nullptr) : sim::ReadCoreJson(config);
   if (core.is_null()) {
-    if (!args.force && sim::SynthesisState(config, core) != "none yet") {
+    if (!args.force && sim::HasSynthesisOfOtherSources(config)) {
       std::fprintf(stderr, "kdrt synth: %s\n", sim::NoSynthesisLine(config).c_str());
     }
     std::fprintf(stderr, "kdrt synth: synthesizing every unit of %s on the OSU 0.18 um library (takes minutes)\n",

@@ -60,10 +60,39 @@ class PhysCli : public ::testing::Test {
   RunResult Kdrt(const std::string& args) const {
     return testing::RunCommand("env KDRT_PHYS_DIR=" + PhysDir() + " " + std::string(KDRT_BIN) + " " + args);
   }
+  // The model key `kdrt sim SCENE OPTS --which-model` names ("" and a test
+  // failure when it names none).
+  std::string SimModelKey(const std::string& scene_and_opts) const {
+    const RunResult w = Kdrt("sim " + scene_and_opts + " --which-model");
+    EXPECT_EQ(w.exit_code, 0) << w.output;
+    const size_t at = w.output.find("model          ");
+    if (at == std::string::npos) {
+      ADD_FAILURE() << "no model line: " << w.output;
+      return "";
+    }
+    return w.output.substr(at + 15, w.output.find(' ', at + 15) - at - 15);
+  }
+  // The path kdrt sim reads the synthesis of KEY from, its directory made.
+  std::string CoreJsonPath(const std::string& key) const {
+    fs::create_directories(fs::path(PhysDir()) / key);
+    return (fs::path(PhysDir()) / key / "core.json").string();
+  }
   fs::path dir_;
 };
 
 const char* const kScene = "gen:room:300 --res 8x8";
+
+// A well-formed core.json of CONFIG's parameters: one unit, clock 5.1 ns.
+nlohmann::json MinimalCoreJson(const sim::CoreConfig& config) {
+  nlohmann::json j = {{"library", "osu018"},
+                      {"clock_ns", 5.1},
+                      {"critical_unit", "rt_x"},
+                      {"area_um2", {{"logic", 1}, {"sram", 0}, {"total", 1}}},
+                      {"units", {{{"unit", "rt_x"}, {"count", 1}, {"area_um2", 1}, {"flip_flops", 0},
+                                  {"crit_ns", 5.1}}}}};
+  for (int i = 0; i < sim::kParamCount; ++i) j["params"][sim::kCoreParams[i].sv_name] = config.value[i];
+  return j;
+}
 
 // No synthesis of the configuration: "physical": null, and the table and
 // stderr say which key has none and how to make it; nothing is written
@@ -89,13 +118,9 @@ TEST_F(PhysCli, NoSynthesisReportsNull) {
 // configuration stops kdrt sim before it runs: exit 1, the file named, no
 // image written.
 TEST_F(PhysCli, BrokenCoreJsonIsRefused) {
-  const RunResult w = Kdrt(std::string("sim ") + kScene + " --which-model");
-  ASSERT_EQ(w.exit_code, 0) << w.output;
-  const size_t at = w.output.find("model          ");
-  ASSERT_NE(at, std::string::npos) << w.output;
-  const std::string key = w.output.substr(at + 15, w.output.find(' ', at + 15) - at - 15);
-  fs::create_directories(fs::path(PhysDir()) / key);
-  const std::string core = (fs::path(PhysDir()) / key / "core.json").string();
+  const std::string key = SimModelKey(kScene);
+  ASSERT_FALSE(key.empty());
+  const std::string core = CoreJsonPath(key);
   const std::string params = "\"params\": {\"E\": 8, \"M\": 23}";
   const std::pair<std::string, std::string> cases[] = {
       {"{\"library\": \"osu018\", \"clock_ns\": 5.1, \"units\": [", "not valid JSON"},
@@ -115,14 +140,7 @@ TEST_F(PhysCli, BrokenCoreJsonIsRefused) {
     EXPECT_FALSE(fs::exists(Path("x.png")));
   }
   // The same params as the key but one: the figures of another configuration.
-  nlohmann::json other = {{"library", "osu018"},
-                          {"clock_ns", 5.1},
-                          {"critical_unit", "rt_x"},
-                          {"area_um2", {{"logic", 1}, {"sram", 0}, {"total", 1}}},
-                          {"units", {{{"unit", "rt_x"}, {"count", 1}, {"area_um2", 1}, {"flip_flops", 0},
-                                      {"crit_ns", 5.1}}}}};
-  sim::CoreConfig c = sim::DefaultConfig(fp::Format{8, 23});
-  for (int i = 0; i < sim::kParamCount; ++i) other["params"][sim::kCoreParams[i].sv_name] = c.value[i];
+  nlohmann::json other = MinimalCoreJson(sim::DefaultConfig(fp::Format{8, 23}));
   other["params"]["Threads"] = 7;
   std::ofstream(core) << other.dump();
   const RunResult r = Kdrt(std::string("sim ") + kScene + " --model fast -q -o " + Path("x.png"));
@@ -135,21 +153,10 @@ TEST_F(PhysCli, BrokenCoreJsonIsRefused) {
 // is null, the line says why, kdrt synth --which says so; with this tree's
 // hash the same file is reported. The script and kdrt hash alike.
 TEST_F(PhysCli, SynthesisOfOtherSourcesIsNotReported) {
-  const RunResult w = Kdrt(std::string("sim ") + kScene + " --which-model");
-  ASSERT_EQ(w.exit_code, 0) << w.output;
-  const size_t at = w.output.find("model          ");
-  ASSERT_NE(at, std::string::npos) << w.output;
-  const std::string key = w.output.substr(at + 15, w.output.find(' ', at + 15) - at - 15);
-  fs::create_directories(fs::path(PhysDir()) / key);
-  const std::string core = (fs::path(PhysDir()) / key / "core.json").string();
-  nlohmann::json j = {{"library", "osu018"},
-                      {"clock_ns", 5.1},
-                      {"critical_unit", "rt_x"},
-                      {"area_um2", {{"logic", 1}, {"sram", 0}, {"total", 1}}},
-                      {"units", {{{"unit", "rt_x"}, {"count", 1}, {"area_um2", 1}, {"flip_flops", 0},
-                                  {"crit_ns", 5.1}}}}};
-  const sim::CoreConfig c = sim::DefaultConfig(fp::Format{8, 23});
-  for (int i = 0; i < sim::kParamCount; ++i) j["params"][sim::kCoreParams[i].sv_name] = c.value[i];
+  const std::string key = SimModelKey(kScene);
+  ASSERT_FALSE(key.empty());
+  const std::string core = CoreJsonPath(key);
+  nlohmann::json j = MinimalCoreJson(sim::DefaultConfig(fp::Format{8, 23}));
   const std::string tree = sim::SourcesHash();
   ASSERT_EQ(tree.size(), 16u);
   for (const std::string& hash : {tree, std::string("0123456789abcdef"), std::string()}) {
@@ -186,15 +193,13 @@ TEST_F(PhysCli, SynthesisOfOtherSourcesIsNotReported) {
 // model key (the one a synthesis is stored under), scene-sized or not.
 TEST_F(PhysCli, SynthComputesTheKeyKdrtSimRuns) {
   for (const std::string opts : {"", " --threads 32 --cache-mshrs 16", " --format fp16 --node-cache-lines 64"}) {
-    const RunResult s = Kdrt(std::string("sim ") + kScene + opts + " --which-model");
-    ASSERT_EQ(s.exit_code, 0) << s.output;
+    const std::string sim_key = SimModelKey(kScene + opts);
+    ASSERT_FALSE(sim_key.empty());
     // kdrt synth takes no --res: the image size does not change the core.
     const RunResult y = Kdrt("synth gen:room:300" + opts + " --which");
     ASSERT_EQ(y.exit_code, 0) << y.output;
-    const size_t a = s.output.find("model          "), b = y.output.find("model          ");
-    ASSERT_NE(a, std::string::npos);
+    const size_t b = y.output.find("model          ");
     ASSERT_NE(b, std::string::npos);
-    const std::string sim_key = s.output.substr(a + 15, s.output.find(' ', a + 15) - a - 15);
     const std::string synth_key = y.output.substr(b + 15, y.output.find('\n', b + 15) - b - 15);
     EXPECT_EQ(sim_key, synth_key) << opts;
     EXPECT_NE(y.output.find(PhysDir() + "/" + synth_key + "/core.json (none yet)"), std::string::npos) << y.output;
