@@ -260,14 +260,16 @@ module rt_core #(
   assign trav_overflow = trav_push && stack_full;
 
   // ------------------------------------------------------------ leaf exit and stack
-  logic                    exit_valid, exit_done;
+  logic                    exit_valid, exit_done, exit_sel;
+  logic [ThW-1:0]          exit_sel_idx;
   logic [NodeIdxWidth-1:0] pop_node;
   logic [W-1:0]            pop_t0, pop_t1, exit_best_t;
   logic                    exit_hit;
   rt_leaf_exit #(.E(E), .M(M), .Threads(Threads), .StackDepth(StackDepth), .NodeIdxWidth(NodeIdxWidth)) u_exit (
     .clk_i, .rst_ni, .clear_i(setup_fire), .clear_idx_i(setup_tag),
     .push_i(trav_push), .push_idx_i(trav_tag), .push_node_i(trav_second), .push_t0_i(trav_ts_lo),
-    .push_t1_i(trav_t1), .push_full_o(stack_full), .req_next_i(exit_next), .exit_valid_o(exit_valid),
+    .push_t1_i(trav_t1), .push_full_o(stack_full), .req_next_i(exit_next), .sel_valid_o(exit_sel),
+    .sel_idx_o(exit_sel_idx), .exit_valid_o(exit_valid),
     .exit_idx_o(exit_idx), .exit_any_i(any_q[exit_idx]), .exit_hit_i(exit_hit), .exit_best_t_i(exit_best_t),
     .exit_t1_i(t1_q[exit_idx]), .exit_done_o(exit_done), .pop_node_o(pop_node), .pop_t0_o(pop_t0),
     .pop_t1_o(pop_t1)
@@ -481,7 +483,8 @@ module rt_core #(
     .node_stall_i(node_valid && !node_ready), .trav_i(trav_valid), .overflow_i(trav_overflow),
     .list_req_i(list_req_valid && list_req_ready), .list_entry_i(entry_fire), .isect_in_i(tri_fire),
     .isect_stall_i(tri_valid && !isect_in_ready), .isect_out_i(isect_valid), .exit_req_i(is_exit),
-    .exit_i(exit_valid), .exit_idx_i(exit_idx), .out_i(out_fire), .hit_valid_i(hit_valid_o), .hit_ready_i,
+    .exit_i(exit_valid), .exit_idx_i(exit_idx), .exit_sel_i(exit_sel),
+    .exit_sel_idx_i(exit_sel_idx), .out_i(out_fire), .hit_valid_i(hit_valid_o), .hit_ready_i,
     .cache_hit_i(cache_hit), .cache_miss_i(cache_miss), .mem_wait_i(mem_wait),
     .node_wait_i(fetch_valid && !node_req_ready), .list_wait_i(list_req_valid && !list_req_ready),
     .tri_wait_i(tri_wait), .cache_merge_i(cache_merge), .cache_wait_inflight_i(cache_wait_inflight),

@@ -2,10 +2,12 @@
 // rt_core (docs/core-interface.md).
 //
 // A thread whose leaf is done asks to exit; the round-robin arbiter takes one
-// a cycle (no backpressure). It chooses a cycle ahead, among the threads that
-// ask in the next cycle (req_next_i), so that the chosen thread's top entry is
-// read from the stack memory (rt_thread_stack) by the time it exits: the
-// choice is the one an arbiter over the requests of the exit cycle would make.
+// a cycle (no backpressure). It chooses among the threads that ask in the
+// next cycle (req_next_i) but the one it chose in this cycle, and the chosen
+// thread exits two cycles later: its top entry is read from the stack memory
+// (rt_thread_stack) and held in a register before the decision looks at it.
+// The thread chosen in a cycle is announced in the next (sel_valid_o,
+// sel_idx_o: it exits in the cycle after) and still asks until it exits.
 // For the chosen thread exit_idx_o the caller gives its closest hit and
 // interval end, and exit_done_o is the rule of TraceRay after a leaf
 // (sw/trace/traversal.h):
@@ -47,6 +49,8 @@ module rt_leaf_exit #(
   output logic                    push_full_o,  // push_idx_i's stack is full: the push is dropped
   // the threads whose leaf is done, in the next cycle
   input  logic [Threads-1:0]      req_next_i,
+  output logic                    sel_valid_o,  // sel_idx_o exits in the next cycle
+  output logic [ThW-1:0]          sel_idx_o,
   output logic                    exit_valid_o,
   output logic [ThW-1:0]          exit_idx_o,
   // exit_idx_o's closest hit (hit, t), interval end t1, and whether its ray
@@ -68,27 +72,35 @@ module rt_leaf_exit #(
   logic pop_ok, push_ok, push_in_plane, pop_in_plane, exit_in_plane;
   logic [SpW-1:0] in_plane_q [Threads];  // entries with a NaN t0 on each thread's stack
 
-  // The next cycle's choice, registered. The arbiter's pointer moves with
-  // its grants, so it is where the exit cycle's arbiter's would be.
-  logic           next_valid;
-  logic [ThW-1:0] next_idx;
+  // The choice, registered twice: the chosen thread (sel_*) and, a cycle
+  // later, the exiting one. The thread chosen in this cycle is out of the
+  // next choice (it asks until it exits).
+  logic               next_valid;
+  logic [ThW-1:0]     next_idx;
+  logic [Threads-1:0] req_next, sel_onehot;
+  assign sel_onehot = sel_valid_o ? Threads'(1) << sel_idx_o : '0;
+  assign req_next = req_next_i & ~sel_onehot;
   rt_rr_arb #(.N(Threads)) u_arb (
-    .clk_i, .rst_ni, .req_i(req_next_i), .ack_i(1'b1), .valid_o(next_valid), .idx_o(next_idx)
+    .clk_i, .rst_ni, .req_i(req_next), .ack_i(1'b1), .valid_o(next_valid), .idx_o(next_idx)
   );
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      sel_valid_o <= 1'b0;
+      sel_idx_o <= '0;
       exit_valid_o <= 1'b0;
       exit_idx_o <= '0;
     end else begin
-      exit_valid_o <= next_valid;
-      exit_idx_o <= next_idx;
+      sel_valid_o <= next_valid;
+      sel_idx_o <= next_idx;
+      exit_valid_o <= sel_valid_o;
+      exit_idx_o <= sel_idx_o;
     end
   end
 
   rt_thread_stack #(.Threads(Threads), .StackDepth(StackDepth), .Width(NodeIdxWidth + 2 * W)) u_stack (
     .clk_i, .rst_ni, .clear_i, .clear_idx_i,
     .push_i, .push_idx_i, .push_data_i({push_node_i, push_t0_i, push_t1_i}), .push_full_o,
-    .read_idx_i(next_idx), .top_empty_o(stack_empty), .top_o({pop_node_o, pop_t0_o, pop_t1_o}),
+    .read_i(next_valid), .read_idx_i(next_idx), .top_empty_o(stack_empty), .top_o({pop_node_o, pop_t0_o, pop_t1_o}),
     .pop_i(pop_ok)
   );
 

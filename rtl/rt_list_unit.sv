@@ -22,11 +22,15 @@
 // before it are requested.
 //
 // The queue (rt_fifo in a memory, Ram = 1) and the prefetcher's copy of the
-// jobs (rt_ram_1r1w, read at the next cycle's prefetch job, forwarding a job
-// pushed in the cycle it is read) are memories with an SRAM's ports; both
-// hold a job's first entry's byte address (list_base_i + ListEntryBytes *
-// first, made as the job is pushed: list_base_i is stable while busy) and
-// its count, so that no addition of the base follows a read.
+// jobs (rt_ram_1r1w) are memories with an SRAM's ports, and no arithmetic
+// follows their reads. The queue holds a job's first entry's byte address
+// (list_base_i + ListEntryBytes * first, made as the job is pushed:
+// list_base_i is stable while busy) and its count; the prefetcher's copy its
+// first entry's line and the job's entries after that line, read a cycle
+// ahead for the job after the prefetcher's (forwarding a job pushed in the
+// cycle it is read), and the prefetcher's own job is in registers.
+// With ListPrefetch, as with ListStream, list_base_i must be a multiple of
+// ListEntryBytes (checked in simulation).
 `default_nettype none
 
 module rt_list_unit #(
@@ -121,88 +125,93 @@ module rt_list_unit #(
   // ------------------------------------------------------------ prefetcher
   if (ListPrefetch > 0) begin : g_prefetch
     // The FIFO's jobs again, at the FIFO's own positions (rt_fifo pushes and
-    // pops in order: its write and read positions are counted here too).
+    // pops in order: its write and read positions are counted here too),
+    // each as the prefetcher walks it: its first entry's line and the
+    // entries after that line (made as the job is pushed), so that nothing
+    // but a choice follows the memory's read.
     localparam int unsigned JobW = (Jobs > 1) ? $clog2(Jobs) : 1;
     localparam int unsigned NumW = $clog2(Jobs + 1);
-    logic [AddrWidth-1:0]  pf_base;   // the job's first entry's address
-    logic [CountWidth-1:0] pf_count;
+    localparam int unsigned LineW = AddrWidth - LineOffW;
+    localparam int unsigned MaxInLine = LineBytes >> EntryShift;
+    logic [LineOffW-EntryShift:0] push_in_line;  // the job's entries its first line can hold
+    logic [LineW-1:0]      push_line;
+    logic [CountWidth-1:0] push_rest;
+    assign push_in_line =
+        (LineOffW - EntryShift + 1)'((LineBytes - 32'(job_addr[LineOffW-1:0])) >> EntryShift);
+    assign push_line = job_addr[AddrWidth-1:LineOffW];
+    assign push_rest = job_count_i > CountWidth'(push_in_line) ? job_count_i - CountWidth'(push_in_line) : '0;
+
     logic [JobW-1:0]       wr_q, rd_q, rd_d;
     logic [NumW-1:0]       queued_q;  // jobs in the FIFO
-    logic [NumW-1:0]       pf_off_q, pf_off_d;  // the prefetcher's job: rd_q + pf_off_q
-    logic [CountWidth-1:0] pf_k_q;    // its next entry
-    logic                  push, pf_fire, pf_job_done, pf_keep, pf_adv;
-    logic [NumW-1:0]       pf_off_base;
-    logic [JobW-1:0]       pf_idx_next, pf_idx_stay, pf_idx_adv;
-    logic [CountWidth:0]   pf_left;  // entries of the job from pf_k_q on
-    logic [AddrWidth-1:0]  pf_entry_addr;
-    logic [CountWidth-1:0] pf_k_next;
-    logic [LineOffW-EntryShift:0] pf_in_line;
+    logic [NumW-1:0]       pf_off_q, pf_off_d, pf_off_base;  // the prefetcher's job: rd_q + pf_off_q
+    logic [LineW-1:0]      line_q;    // the line it asks for
+    logic [CountWidth-1:0] rest_q;    // its job's entries after that line
+    logic [LineW-1:0]      next_line; // the job after it: read a cycle ahead
+    logic [CountWidth-1:0] next_rest;
+    logic                  push, pf_fire, pf_job_done, pf_keep, pf_adv, pf_move, pf_step, load_push;
+    logic [JobW-1:0]       pf_idx_stay, pf_idx_adv, pf_idx_after;
     function automatic logic [JobW-1:0] wrap_inc(input logic [JobW-1:0] p);
       wrap_inc = (32'(p) == Jobs - 1) ? '0 : p + 1'b1;
     endfunction
     assign push = job_valid_i && job_ready_o;
     assign pf_valid_o = pf_off_q < queued_q && 32'(pf_off_q) < ListPrefetch;
-    assign pf_entry_addr = pf_base + (AddrWidth'(pf_k_q) << EntryShift);
-    assign pf_addr_o = {pf_entry_addr[AddrWidth-1:LineOffW], {LineOffW{1'b0}}};
-    assign pf_in_line = (LineOffW - EntryShift + 1)'((LineBytes - 32'(pf_entry_addr[LineOffW-1:0])) >> EntryShift);
-    // pf_k_q plus each count of entries a line can hold, chosen by the
-    // line's: the sums start with the register, not after the job's word.
-    localparam int unsigned MaxInLine = LineBytes >> EntryShift;
-    logic [CountWidth-1:0] pf_k_plus [MaxInLine + 1];
-    for (genvar c = 0; c <= MaxInLine; c++) begin : g_k_plus
-      assign pf_k_plus[c] = pf_k_q + CountWidth'(c);
-    end
-    assign pf_k_next = pf_k_plus[pf_in_line];
+    assign pf_addr_o = {line_q, {LineOffW{1'b0}}};
     assign pf_fire = pf_valid_o && pf_ready_i;
-    // pf_k_next >= pf_count, as the entries left against the line's: pf_k_q
-    // is 0 or below pf_count (it moves on only while the job is not done),
-    // so the subtraction starts with the job's word instead of after the
-    // entry address.
-    assign pf_left = {1'b0, pf_count} - {1'b0, pf_k_q};
-    assign pf_job_done = pf_left <= (CountWidth + 1)'(pf_in_line);
-    // The walker taking the prefetcher's job moves it on to the next oldest.
-    // The next job's index and forwarding compare are made for both
-    // outcomes of this job's end and chosen by it (it is known last).
+    assign pf_job_done = rest_q == '0;
+    // The walker taking the prefetcher's job moves it on to the next oldest,
+    // as does the prefetcher's own last line of a job.
     assign rd_d = queued_pop ? wrap_inc(rd_q) : rd_q;
     assign pf_keep = queued_pop && pf_off_q == '0;
     assign pf_off_base = pf_keep ? pf_off_q : pf_off_q - NumW'(queued_pop);
     assign pf_adv = !pf_keep && pf_fire && pf_job_done;
     assign pf_off_d = pf_off_base + NumW'(pf_adv);
+    assign pf_move = pf_keep || pf_adv;
+    assign pf_step = !pf_move && pf_fire;
+    // The next cycle's job and the one after it, for both outcomes of pf_adv.
     assign pf_idx_stay = JobW'((32'(rd_d) + 32'(pf_off_base)) % Jobs);
-    assign pf_idx_adv = JobW'((32'(rd_d) + 32'(pf_off_base) + 1) % Jobs);
-    assign pf_idx_next = pf_adv ? pf_idx_adv : pf_idx_stay;
+    assign pf_idx_adv = wrap_inc(pf_idx_stay);
+    assign pf_idx_after = wrap_inc(pf_idx_adv);
+    // The job pushed in this cycle is the prefetcher's next one when the
+    // prefetcher is past the last queued job.
+    assign load_push = push && (pf_adv ? wr_q == pf_idx_adv : wr_q == pf_idx_stay);
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         wr_q <= '0;
         rd_q <= '0;
         queued_q <= '0;
         pf_off_q <= '0;
-        pf_k_q <= '0;
       end else begin
         if (push) wr_q <= wrap_inc(wr_q);
         if (queued_pop) rd_q <= wrap_inc(rd_q);
         queued_q <= queued_q + NumW'(push) - NumW'(queued_pop);
         pf_off_q <= pf_off_d;
-        if (queued_pop && pf_off_q == '0) begin
-          pf_k_q <= '0;
-        end else if (pf_fire) begin
-          pf_k_q <= pf_job_done ? '0 : pf_k_next;
-        end
       end
     end
-    // The job at the next cycle's pf_idx, read a cycle ahead; a job pushed
-    // to that position in this cycle is forwarded.
-    logic                            pf_fwd_q;
-    logic [AddrWidth+CountWidth-1:0] pf_fwd_data_q, pf_rdata;
-    rt_ram_1r1w #(.Words(Jobs), .Width(AddrWidth + CountWidth)) u_pf_jobs (
-      .clk_i, .we_i(push), .waddr_i(wr_q), .wdata_i({job_addr, job_count_i}),
-      .re_i(1'b1), .raddr_i(pf_idx_next), .rdata_o(pf_rdata)
+    always_ff @(posedge clk_i) begin
+      if (load_push) begin
+        line_q <= push_line;
+        rest_q <= push_rest;
+      end else if (pf_move) begin
+        line_q <= next_line;
+        rest_q <= next_rest;
+      end else if (pf_step) begin
+        line_q <= line_q + 1'b1;
+        rest_q <= rest_q > CountWidth'(MaxInLine) ? rest_q - CountWidth'(MaxInLine) : '0;
+      end
+    end
+    // The job after the next cycle's, read a cycle ahead; a job pushed to
+    // that position in this cycle is forwarded.
+    logic                       pf_fwd_q;
+    logic [LineW+CountWidth-1:0] pf_fwd_data_q, pf_rdata;
+    rt_ram_1r1w #(.Words(Jobs), .Width(LineW + CountWidth)) u_pf_jobs (
+      .clk_i, .we_i(push), .waddr_i(wr_q), .wdata_i({push_line, push_rest}),
+      .re_i(1'b1), .raddr_i(pf_adv ? pf_idx_after : pf_idx_adv), .rdata_o(pf_rdata)
     );
     always_ff @(posedge clk_i) begin
-      pf_fwd_q <= push && (pf_adv ? wr_q == pf_idx_adv : wr_q == pf_idx_stay);
-      if (push) pf_fwd_data_q <= {job_addr, job_count_i};
+      pf_fwd_q <= push && (pf_adv ? wr_q == pf_idx_after : wr_q == pf_idx_adv);
+      if (push) pf_fwd_data_q <= {push_line, push_rest};
     end
-    assign {pf_base, pf_count} = pf_fwd_q ? pf_fwd_data_q : pf_rdata;
+    assign {next_line, next_rest} = pf_fwd_q ? pf_fwd_data_q : pf_rdata;
   end else begin : g_no_prefetch
     assign pf_valid_o = 1'b0;
     assign pf_addr_o = '0;
@@ -211,6 +220,15 @@ module rt_list_unit #(
     assign unused_pf = pf_ready_i;
     /* verilator lint_on UNUSEDSIGNAL */
   end
+
+`ifndef SYNTHESIS
+  always_ff @(posedge clk_i) begin
+    if (rst_ni && job_valid_i && (ListStream != 0 || ListPrefetch > 0)) begin
+      assert (list_base_i[EntryShift-1:0] == '0)
+      else $error("rt_list_unit: list_base_i 0x%0h is not a multiple of the list entry's bytes", list_base_i);
+    end
+  end
+`endif
 
   rt_stream_check #(.Width(TagWidth + 32 + CountWidth), .Name("rt_list_unit job")) u_job_check (
     .clk_i, .rst_ni, .valid_i(job_valid_i), .ready_i(job_ready_o),

@@ -5,7 +5,8 @@
 // The stall events classify a cycle: stall_mem when rays are in flight, no
 // unit made progress (no ray taken or set up, no node step, list entry, test
 // taken or finished, leaf exit or hit out) and a cache waits for memory;
-// stall_stack when a thread in EXIT is not the one the leaf exit takes;
+// stall_stack when a thread in EXIT is neither the one the leaf exit takes
+// nor the one it has chosen to take next;
 // stall_backpressure when a hit record waits on hit_ready_i or a node
 // response or triangle waits on the unit it goes to. The waits, merges and
 // stalls per cache and per unit are passed through as they come.
@@ -31,6 +32,8 @@ module rt_perf_events #(
   input  logic [Threads-1:0] exit_req_i,     // the threads in EXIT
   input  logic               exit_i,         // a leaf exit, of thread exit_idx_i
   input  logic [ThW-1:0]     exit_idx_i,
+  input  logic               exit_sel_i,     // the leaf exit's next thread, exit_sel_idx_i (it exits in the next cycle)
+  input  logic [ThW-1:0]     exit_sel_idx_i,
   input  logic               out_i,          // a finished ray taken by the hit output
   input  logic               hit_valid_i,    // rt_core's hit output stream
   input  logic               hit_ready_i,
@@ -48,12 +51,13 @@ module rt_perf_events #(
 );
 
   logic trav_in, list_busy, any_progress;
-  logic [Threads-1:0] exit_taken;
+  logic [Threads-1:0] exit_taken, exit_chosen;
   assign trav_in = node_i && !node_leaf_i;
   assign list_busy = list_req_i || list_entry_i;
   assign any_progress = trav_in || list_busy || isect_in_i || exit_i || out_i || ray_in_i || clip_i || trav_i ||
                         isect_out_i;
   assign exit_taken = exit_i ? Threads'(1) << exit_idx_i : '0;
+  assign exit_chosen = exit_sel_i ? Threads'(1) << exit_sel_idx_i : '0;
 
   assign perf_o.trav_busy = trav_in;
   assign perf_o.list_busy = list_busy;
@@ -61,7 +65,7 @@ module rt_perf_events #(
   assign {perf_o.tri_hit, perf_o.list_hit, perf_o.node_hit} = cache_hit_i;
   assign {perf_o.tri_miss, perf_o.list_miss, perf_o.node_miss} = cache_miss_i;
   assign perf_o.stall_mem = busy_i && !any_progress && mem_wait_i;
-  assign perf_o.stall_stack = (exit_req_i & ~exit_taken) != '0;
+  assign perf_o.stall_stack = (exit_req_i & ~exit_taken & ~exit_chosen) != '0;
   assign perf_o.stall_backpressure = (hit_valid_i && !hit_ready_i) || isect_stall_i || node_stall_i;
   assign perf_o.ray_in = ray_in_i;
   assign perf_o.ray_out = hit_valid_i && hit_ready_i;

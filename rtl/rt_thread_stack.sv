@@ -4,12 +4,17 @@
 // thread t's entry k at t * StackDepth + k), a stack pointer per thread
 // beside it.
 //
-// The top entry is read a cycle ahead: read_idx_i names the thread whose top
-// the next cycle looks at, and from then on top_o and top_empty_o are that
-// thread's top entry and emptiness as they are after this cycle's events,
-// and pop_i pops that thread's stack. The read forwards what this cycle does
-// to the thread (a pop: the entry below the top; a push: the pushed entry; a
-// clear: empty), so a thread may be read in any cycle.
+// The top entry is read two cycles ahead, so that the memory's word goes to a
+// register before anything decides on it: read_idx_i names the thread whose
+// top the cycle after next looks at, and in that cycle top_o and top_empty_o
+// are that thread's top entry and emptiness as they are after the cycle
+// before it, and pop_i pops that thread's stack. The read forwards what the
+// two cycles in between do to the thread (a push: the pushed entry; a clear:
+// empty; in the first of them also a pop: the entry below the top), so a
+// thread may be read in any cycle (read_i), except that a thread popped in
+// a cycle must not have been read again in the cycle after its own read (that
+// read's top would be the entry below the one it read): the leaf exit never
+// chooses the thread it has just chosen (checked in simulation).
 //
 // In one cycle a thread's stack may be cleared (a new ray), another's pushed
 // and another's popped; if they name the same thread, the pop wins over the
@@ -37,8 +42,9 @@ module rt_thread_stack #(
   input  logic [ThW-1:0]   push_idx_i,
   input  logic [Width-1:0] push_data_i,
   output logic             push_full_o,   // push_idx_i's stack holds StackDepth entries
-  input  logic [ThW-1:0]   read_idx_i,    // the thread whose top the next cycle looks at
-  output logic             top_empty_o,   // the thread read in the previous cycle: its stack is empty
+  input  logic             read_i,        // a read: of read_idx_i's top
+  input  logic [ThW-1:0]   read_idx_i,    // the thread whose top the cycle after next looks at
+  output logic             top_empty_o,   // the thread read two cycles before: its stack is empty
   output logic [Width-1:0] top_o,         // its top entry
   input  logic             pop_i          // pop its stack
 );
@@ -50,9 +56,13 @@ module rt_thread_stack #(
   endfunction
 
   logic [SpW-1:0]   sp_q [Threads];
-  logic [ThW-1:0]   top_idx_q;     // the thread on top_o
-  logic             empty_q, fwd_q;
-  logic [Width-1:0] fwd_data_q;    // the entry pushed onto it as it was read
+  // The read's two stages: the thread read in the previous cycle (rd_*: its
+  // word on the memory's output) and the one read two cycles before (top_*:
+  // the top the caller looks at).
+  logic [ThW-1:0]   rd_idx_q, top_idx_q;
+  logic             rd_valid_q, rd_empty_q, rd_fwd_q, top_empty_q;
+  logic [Width-1:0] rd_fwd_data_q;  // the entry pushed onto it as it was read
+  logic [Width-1:0] top_q;
   logic [Width-1:0] ram_rdata;
 
   logic [SpW-1:0] push_sp, pop_sp, read_sp, read_sp_next, read_sp_kept;
@@ -63,7 +73,7 @@ module rt_thread_stack #(
   assign read_sp = sp_q[read_idx_i];
   assign push_full_o = push_sp == SpW'(StackDepth);
   assign push_ok = push_i && !push_full_o;
-  assign pop_ok = pop_i && !empty_q;
+  assign pop_ok = pop_i && !top_empty_q;
   assign push_wins = push_ok && !(pop_ok && push_idx_i == top_idx_q);
 
   // The read thread's pointer after this cycle, with the events' priorities.
@@ -89,26 +99,38 @@ module rt_thread_stack #(
   assign raddr_kept = addr(read_idx_i, read_sp_kept - 1'b1);
   rt_ram_banked #(.Words(Words), .Width(Width), .BankWords(BankWords)) u_ram (
     .clk_i, .we_i(push_ok), .waddr_i(addr(push_idx_i, push_sp)), .wdata_i(push_data_i),
-    .re_i(read_popped ? re_popped : re_kept), .raddr_i(read_popped ? raddr_popped : raddr_kept),
+    .re_i(read_i && (read_popped ? re_popped : re_kept)), .raddr_i(read_popped ? raddr_popped : raddr_kept),
     .rdata_o(ram_rdata)
   );
 
+  // The second stage: the word read (or forwarded) to a register, with this
+  // cycle's push or clear of the thread (its pop cannot be: see above).
+  logic rd_pushed, rd_cleared;
+  assign rd_pushed = push_ok && push_idx_i == rd_idx_q;
+  assign rd_cleared = !rd_pushed && clear_i && clear_idx_i == rd_idx_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      rd_valid_q <= 1'b0;
+      rd_idx_q <= '0;
+      rd_empty_q <= 1'b1;
+      rd_fwd_q <= 1'b0;
       top_idx_q <= '0;
-      empty_q <= 1'b1;
-      fwd_q <= 1'b0;
+      top_empty_q <= 1'b1;
     end else begin
-      top_idx_q <= read_idx_i;
-      empty_q <= read_sp_next == '0;
-      fwd_q <= read_pushed;
+      rd_valid_q <= read_i;
+      rd_idx_q <= read_idx_i;
+      rd_empty_q <= read_sp_next == '0;
+      rd_fwd_q <= read_pushed;
+      top_idx_q <= rd_idx_q;
+      top_empty_q <= rd_cleared || (rd_empty_q && !rd_pushed);
     end
   end
   always_ff @(posedge clk_i) begin
-    if (read_pushed) fwd_data_q <= push_data_i;
+    if (read_pushed) rd_fwd_data_q <= push_data_i;
+    top_q <= rd_pushed ? push_data_i : rd_fwd_q ? rd_fwd_data_q : ram_rdata;
   end
-  assign top_empty_o = empty_q;
-  assign top_o = fwd_q ? fwd_data_q : ram_rdata;
+  assign top_empty_o = top_empty_q;
+  assign top_o = top_q;
 
   // The pointers: the events name different threads here (the pop wins over
   // the push, the push over the clear), so each thread takes one update.
@@ -123,6 +145,15 @@ module rt_thread_stack #(
       if (pop_ok) sp_q[top_idx_q] <= pop_sp - 1'b1;
     end
   end
+
+`ifndef SYNTHESIS
+  always_ff @(posedge clk_i) begin
+    if (rst_ni) begin
+      assert (!(pop_ok && rd_valid_q && rd_idx_q == top_idx_q))
+      else $error("rt_thread_stack: thread %0d popped in the cycle after it was read again", top_idx_q);
+    end
+  end
+`endif
 
 endmodule
 

@@ -290,6 +290,7 @@ class FastCore {
   Cache node_, list_, tri_;
   std::vector<Thread> th_;
   RrArb fetch_arb_, fetch2_arb_, exit_arb_, out_arb_;
+  int exit_chosen_ = -1;  // the leaf exit's choice of the previous cycle: it exits in this one
   int mem_last_ = 2;  // the memory arbiter's last grant (rt_rr_arb over the three caches)
   // The threads in each state (the ray input and the arbiters pick from FREE,
   // FETCH, EXIT and DONE), kept up to date by the moves below.
@@ -514,10 +515,19 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
     ++perf[kBitIsectBusy];
   }
 
-  // Leaf exits and records out.
-  const int ex = in_state_[kExit] > 0 ? exit_arb_.Pick(in_set_[kExit]) : -1;
-  exit_arb_.Ack(ex);
+  // Leaf exits and records out. The leaf exit chooses among the threads in
+  // EXIT but the one it chose in the previous cycle, which exits in this one
+  // (rt_leaf_exit: the choice's top entry is read and registered first).
+  const int ex = exit_chosen_;
   if (ex >= 0) Move(ex, th_[ex].next == th_[ex].end ? kDone : kFetch);
+  int chosen = -1;
+  if (in_state_[kExit] > (ex >= 0 ? 1u : 0u)) {
+    if (ex >= 0) in_set_[kExit].Reset(ex);
+    chosen = exit_arb_.Pick(in_set_[kExit]);
+    if (ex >= 0) in_set_[kExit].Set(ex);
+  }
+  exit_arb_.Ack(chosen);
+  exit_chosen_ = chosen;
   const int o = in_state_[kDone] > 0 ? out_arb_.Pick(in_set_[kDone]) : -1;
   out_arb_.Ack(o);
   if (o >= 0) {
@@ -528,12 +538,13 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
 
   // rt_perf_events' stalls from this cycle's registered state and moves: a
   // memory stall when a thread is busy, nothing progresses and a cache
-  // waits on the memory; a stack stall when a thread in EXIT is not taken.
+  // waits on the memory; a stack stall when a thread in EXIT is neither
+  // exiting nor chosen to exit next.
   // (The units and the harness are always ready: no backpressure.)
   const bool any_progress = trav_in || list_fire || entry_fire || tri_fire || ex >= 0 || o >= 0 || alloc >= 0 ||
                             clip_out || trav_out || retired >= 0;
   if (Busy() && !any_progress && mem_wait) ++perf[kBitStallMem];
-  if (in_state_[kExit] > (ex >= 0 ? 1u : 0u)) ++perf[kBitStallStack];
+  if (in_state_[kExit] > (ex >= 0 ? 1u : 0u) + (chosen >= 0 ? 1u : 0u)) ++perf[kBitStallStack];
 
   // LEAF: the counters of tests issued and returned.
   if (tri_fire) {

@@ -1,6 +1,8 @@
 // Verilator bench of rtl/rt_leaf_exit.sv against a C++ model, per preset,
 // cycle by cycle: the round-robin choice among the threads asking to exit
-// (asked a cycle ahead: req_next_i is the next cycle's requests),
+// (asked a cycle ahead: req_next_i is the next cycle's requests) but the one
+// chosen in the cycle before, announced in the next cycle (sel_valid_o) and
+// exiting in the one after,
 // per-thread stacks of (node, t0, t1) entries (push_full_o, a push onto a full
 // stack dropped, the pop winning over the push and the push over the clear
 // when they name the same thread), and the exit rule of TraceRay after a leaf
@@ -64,9 +66,11 @@ bool Run(Format f, uint64_t cycles) {
   Rng rng(31 + f.m);
   std::array<std::vector<Entry>, kThreads> model;
   unsigned last = kThreads - 1;  // the arbiter's pointer after reset
+  bool chosen = false;           // the thread chosen in the previous cycle: it exits in this one
+  unsigned chosen_idx = 0;
   std::array<uint32_t, 6> pool{};
   double p_push = 0.5, p_req = 0.5, p_clear = 0.05, p_hit = 0.5;
-  uint64_t exits = 0, by_any = 0, by_t1 = 0, by_empty = 0, by_pop_t0 = 0, held = 0, pops = 0, dropped = 0;
+  uint64_t exits = 0, masked = 0, by_any = 0, by_t1 = 0, by_empty = 0, by_pop_t0 = 0, held = 0, pops = 0, dropped = 0;
   for (uint64_t cycle = 0; cycle < cycles; ++cycle) {
     if (cycle % 200 == 0) {
       const unsigned regime = rng.Below(3);  // fill, drain, mix
@@ -98,16 +102,21 @@ bool Run(Format f, uint64_t cycles) {
     dut.exit_best_t_i = best_t;
     dut.exit_t1_i = t1;
     sim.Settle();
-    // The model: the first requester after `last`, wrapping around.
-    bool valid = false;
-    unsigned idx = 0;
-    for (unsigned k = 1; k <= kThreads && !valid; ++k) {
+    // The model's choice: the first requester after `last`, wrapping around,
+    // but the thread chosen in the cycle before; the exit: that thread.
+    const unsigned req_open = req & ~(chosen ? 1u << chosen_idx : 0u);
+    bool sel = false;
+    unsigned sel_idx = 0;
+    for (unsigned k = 1; k <= kThreads && !sel; ++k) {
       const unsigned i = (last + k) % kThreads;
-      if (req >> i & 1) {
-        valid = true;
-        idx = i;
+      if (req_open >> i & 1) {
+        sel = true;
+        sel_idx = i;
       }
     }
+    masked += req_open != req;
+    const bool valid = chosen;
+    const unsigned idx = chosen_idx;
     const bool full = model[ui].size() == kDepth;
     bool done = false;
     if (valid) {
@@ -124,7 +133,8 @@ bool Run(Format f, uint64_t cycles) {
       by_pop_t0 += !by_any_hit && !in_plane && !le_t1 && lt_pop;
       held += !done && (le_t1 || lt_pop);
     }
-    bool bad = static_cast<bool>(dut.exit_valid_o) != valid || static_cast<bool>(dut.push_full_o) != full;
+    bool bad = static_cast<bool>(dut.exit_valid_o) != valid || static_cast<bool>(dut.push_full_o) != full ||
+               static_cast<bool>(dut.sel_valid_o) != sel || (sel && dut.sel_idx_o != sel_idx);
     if (valid) {
       bad = bad || dut.exit_idx_o != idx || static_cast<bool>(dut.exit_done_o) != done;
       if (!model[idx].empty()) {
@@ -133,18 +143,20 @@ bool Run(Format f, uint64_t cycles) {
       }
     }
     if (bad) {
-      std::printf("rt_leaf_exit %s: FAIL at cycle %llu: valid %d idx %u done %d full %d (model %d %u %d %d)\n",
-                  f.Name().c_str(), static_cast<unsigned long long>(cycle), dut.exit_valid_o, dut.exit_idx_o,
-                  dut.exit_done_o, dut.push_full_o, valid, idx, done, full);
+      std::printf("rt_leaf_exit %s: FAIL at cycle %llu: chosen %d %u; exit valid %d idx %u done %d full %d (model "
+                  "%d %u; %d %u %d %d)\n",
+                  f.Name().c_str(), static_cast<unsigned long long>(cycle), dut.sel_valid_o, dut.sel_idx_o,
+                  dut.exit_valid_o, dut.exit_idx_o, dut.exit_done_o, dut.push_full_o, sel, sel_idx, valid, idx, done,
+                  full);
       std::printf("  hit %d best_t 0x%08x t1 0x%08x; rtl top node 0x%02x t0 0x%08x t1 0x%08x (%zu entries)\n", hit,
                   best_t, t1, dut.pop_node_o, dut.pop_t0_o, dut.pop_t1_o, valid ? model[idx].size() : 0);
       return false;
     }
     sim.Tick();
-    if (valid) {
-      last = idx;
-      ++exits;
-    }
+    if (sel) last = sel_idx;
+    exits += valid;
+    chosen = sel;
+    chosen_idx = sel_idx;
     const bool pop_ok = valid && !done, push_ok = push && !full;
     dropped += push && full;
     for (unsigned t = 0; t < kThreads; ++t) {
@@ -160,10 +172,13 @@ bool Run(Format f, uint64_t cycles) {
     req = req_next;
   }
   auto u = [](uint64_t x) { return static_cast<unsigned long long>(x); };
-  if (by_any == 0 || by_t1 == 0 || by_empty == 0 || by_pop_t0 == 0 || held == 0 || pops == 0 || dropped == 0) {
+  if (by_any == 0 || by_t1 == 0 || by_empty == 0 || by_pop_t0 == 0 || held == 0 || pops == 0 || dropped == 0 ||
+      masked == 0) {
     std::printf("rt_leaf_exit %s: FAIL: the traffic missed a case (done by any-hit only %llu, by t1 %llu, empty %llu, "
-                "popped t0 %llu; held by an in-plane entry %llu; pops %llu; pushes onto full stacks %llu)\n",
-                f.Name().c_str(), u(by_any), u(by_t1), u(by_empty), u(by_pop_t0), u(held), u(pops), u(dropped));
+                "popped t0 %llu; held by an in-plane entry %llu; pops %llu; pushes onto full stacks %llu; chosen "
+                "threads asking again %llu)\n",
+                f.Name().c_str(), u(by_any), u(by_t1), u(by_empty), u(by_pop_t0), u(held), u(pops), u(dropped),
+                u(masked));
     return false;
   }
   std::printf("rt_leaf_exit %s: PASS (%llu cycles, %llu exits: done by any-hit only %llu, by t1 %llu, empty %llu, "

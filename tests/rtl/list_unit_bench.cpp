@@ -88,10 +88,10 @@ bool Run(const char* name, bool stream, uint32_t prefetch, uint64_t cycles) {
       p_ready = std::array<double, 4>{1.0, 0.9, 0.5, 0.1}[rng.Below(4)];
     }
     // list_base_i is stable while busy: a new one only when all is quiet.
-    // (With ListStream a multiple of the entry size, as the image's list
-    // section is: an entry never straddles two lines.)
+    // (With ListStream or ListPrefetch a multiple of the entry size, as the
+    // image's list section is: an entry never straddles two lines.)
     if (!m.active && m.queue.empty() && !offering && rng.Chance(0.01)) {
-      base = rng.Bits32() & kAddrMask & (stream ? ~3u : ~0u);
+      base = rng.Bits32() & kAddrMask & (stream || prefetch > 0 ? ~3u : ~0u);
     }
     if (!offering && rng.Chance(p_job)) {
       offering = true;

@@ -4,7 +4,8 @@
 // random handshakes and waits. Each input is set with a chance drawn per
 // regime (rare, even, frequent), so that cycles without any progress (the
 // stall_mem case) and every single event alone are common; exit requests are
-// a random set of threads, and the exit taken one of them or any thread.
+// a random set of threads, and the exit taken and the one chosen next each
+// one of them or any thread.
 #include <array>
 #include <cstdio>
 #include <cstring>
@@ -77,6 +78,12 @@ bool Run(uint64_t vectors) {
       while (!(exit_req >> exit_idx & 1)) exit_idx = rng.Below(kThreads);
     }
     if (rng.Chance(0.02)) exit = b();
+    // The thread chosen to exit next: another requester, or any thread.
+    bool sel = exit_req != 0 && rng.Chance(0.7);
+    unsigned sel_idx = rng.Below(kThreads);
+    if (sel && rng.Chance(0.8)) {
+      while (!(exit_req >> sel_idx & 1)) sel_idx = rng.Below(kThreads);
+    }
     dut.busy_i = busy;
     dut.ray_in_i = ray_in;
     dut.clip_i = clip;
@@ -93,6 +100,8 @@ bool Run(uint64_t vectors) {
     dut.exit_req_i = exit_req;
     dut.exit_i = exit;
     dut.exit_idx_i = exit_idx;
+    dut.exit_sel_i = sel;
+    dut.exit_sel_idx_i = sel_idx;
     dut.out_i = out;
     dut.hit_valid_i = hit_valid;
     dut.hit_ready_i = hit_ready;
@@ -111,7 +120,7 @@ bool Run(uint64_t vectors) {
     const bool trav_in = node && !node_leaf, list_busy = list_req || list_entry;
     const bool progress =
         trav_in || list_busy || isect_in || exit || out || ray_in || clip || trav || isect_out;
-    const unsigned taken = exit ? 1u << exit_idx : 0;
+    const unsigned taken = (exit ? 1u << exit_idx : 0) | (sel ? 1u << sel_idx : 0);
     const std::array<bool, kNames> want = {trav_in,
                                        list_busy,
                                        isect_in,
