@@ -59,6 +59,9 @@ module rt_cache #(
   parameter int unsigned Targets = 1,  // requests a miss register answers (the first and merged ones)
   parameter bit MissPort = 1'b0,       // the second, miss-only request port
   parameter bit PrefetchPort = 1'b0,   // the second port takes prefetches (MissPort = 0)
+  // a line's byte address is its key times its bytes (req_addr_i and
+  // req2_addr_i are unused): the miss registers keep no address
+  parameter bit KeyIsLine = 1'b0,
   // the words of one SRAM macro: the line array and the merged requests are
   // banked so that their access time is a small macro's (rt_ram_banked)
   parameter int unsigned BankWords = 128,
@@ -66,6 +69,9 @@ module rt_cache #(
   localparam int unsigned IdxW = (Lines > 1) ? $clog2(Lines) : 1,
   localparam int unsigned Sets = Lines / Ways,
   localparam int unsigned SetW = (Sets > 1) ? $clog2(Sets) : 1,
+  // a line keeps its key but the set's bits, which its place gives
+  localparam int unsigned SetBits = $clog2(Sets),
+  localparam int unsigned LineTagW = (KeyWidth > SetBits) ? KeyWidth - SetBits : 1,
   localparam int unsigned WayW = (Ways > 1) ? $clog2(Ways) : 1,
   localparam int unsigned PlruW = (Ways > 1) ? Ways - 1 : 1,
   localparam int unsigned BeatW = 2,
@@ -116,8 +122,11 @@ module rt_cache #(
 
   localparam int unsigned CntW = BeatW + 1;
 
-  logic [KeyWidth-1:0] key_q [Lines];
+  logic [LineTagW-1:0] key_q [Lines];  // a line's key above its set's bits
   logic [Lines-1:0]    valid_q;
+  function automatic logic [LineTagW-1:0] line_tag(input logic [KeyWidth-1:0] key);
+    line_tag = LineTagW'(key >> SetBits);
+  endfunction
 
   // Miss registers (MSHRs): the conditions every register is matched or
   // picked by are vectors of a bit per register (valid, beats received,
@@ -130,7 +139,6 @@ module rt_cache #(
   logic [Mshrs-1:0]           mshr_unsent_q;  // beats left to request
   logic [Mshrs-1:0]           mshr_full_q;    // Targets requests joined
   logic [KeyWidth-1:0]        mshr_key_q [Mshrs];
-  logic [AddrWidth-1:0]       mshr_addr_q [Mshrs];
   logic [TgtW-1:0]            mshr_cnt_q [Mshrs];   // requests joined
   logic [TgtW-1:0]            mshr_out_q [Mshrs];   // requests answered
   logic [CntW-1:0]            mshr_sent_q [Mshrs];  // beats requested so far
@@ -313,9 +321,9 @@ module rt_cache #(
     assign l1 = IdxW'(32'(req_set) * Ways + w);
     assign l2 = IdxW'(32'(req2_set) * Ways + w);
     assign ld = IdxW'(32'(done_set) * Ways + w);
-    assign hit_ways[w] = valid_q[l1] && key_q[l1] == req_key_i;
-    assign hit2_ways[w] = valid_q[l2] && key_q[l2] == req2_key_i;
-    assign done_ways[w] = valid_q[ld] && key_q[ld] == done_key;
+    assign hit_ways[w] = valid_q[l1] && key_q[l1] == line_tag(req_key_i);
+    assign hit2_ways[w] = valid_q[l2] && key_q[l2] == line_tag(req2_key_i);
+    assign done_ways[w] = valid_q[ld] && key_q[ld] == line_tag(done_key);
     assign free_ways[w] = !valid_q[ld];
   end
   // The lowest way of each kind; exactly one way is the one the tree points
@@ -439,8 +447,22 @@ module rt_cache #(
   logic [CntW-1:0] send_beat;
   assign send_beat = mshr_sent_q[send_idx];
   assign mem_req_valid_o = send_valid;
-  assign mem_req_addr_o = mshr_addr_q[send_idx] +
-                          AddrWidth'(send_beat) * AddrWidth'(16);
+  // The line's address: from the key, or kept per miss register.
+  logic [AddrWidth-1:0] send_line_addr;
+  if (KeyIsLine) begin : g_key_addr
+    assign send_line_addr = AddrWidth'(mshr_key_q[send_idx]) * AddrWidth'(LineBeats * 16);
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic unused_addr;
+    assign unused_addr = ^{m_addr};
+    /* verilator lint_on UNUSEDSIGNAL */
+  end else begin : g_mshr_addr
+    logic [AddrWidth-1:0] mshr_addr_q [Mshrs];
+    always_ff @(posedge clk_i) begin
+      if (m_take && !m_join) mshr_addr_q[free_idx] <= m_addr;
+    end
+    assign send_line_addr = mshr_addr_q[send_idx];
+  end
+  assign mem_req_addr_o = send_line_addr + AddrWidth'(send_beat) * AddrWidth'(16);
   assign mem_req_id_o = {send_idx, send_beat[BeatW-1:0]};
 
   // The response registers' next state, as the updates below give it.
@@ -484,7 +506,6 @@ module rt_cache #(
         mshr_full_q[m_join_idx] <= 32'(m_join_cnt) + 1 >= Targets;
       end else begin
         mshr_key_q[free_idx] <= m_key;
-        mshr_addr_q[free_idx] <= m_addr;
         mshr_sent_q[free_idx] <= '0;
         mshr_unsent_q[free_idx] <= 1'b1;
         mshr_cnt_q[free_idx] <= m_count0 ? '0 : TgtW'(1);
@@ -498,7 +519,7 @@ module rt_cache #(
     end
     if (deliver) begin
       mshr_out_q[done_idx] <= done_out + 1'b1;
-      key_q[done_line] <= done_key;
+      key_q[done_line] <= line_tag(done_key);
       del_data_q <= done_data;
       del_tag_q <= done_tag;
     end

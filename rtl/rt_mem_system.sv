@@ -116,7 +116,7 @@ module rt_mem_system #(
 
   rt_cache #(.Lines(NodeCacheLines), .LineBeats(NodeLineBeats), .KeyWidth(AddrWidth - NodeOffW),
              .AddrWidth(AddrWidth), .TagWidth(TagWidth), .Mshrs(CacheMshrs), .Targets(CacheTargets), .Ways(CacheWays),
-             .MissPort(1'b1)) u_node_cache (
+             .MissPort(1'b1), .KeyIsLine(1'b1)) u_node_cache (
     .clk_i, .rst_ni,
     .req_valid_i(node_req_valid_i), .req_ready_o(node_req_ready_o),
     .req_key_i(node_req_addr_i[AddrWidth-1:NodeOffW]),
@@ -147,7 +147,7 @@ module rt_mem_system #(
   logic [TriIdxWidth-1:0]       unused_tri_id_next;
   rt_cache #(.Lines(ListCacheLines), .LineBeats(ListLineBeats), .KeyWidth(AddrWidth - ListOffW),
              .AddrWidth(AddrWidth), .TagWidth(ListTagW), .Mshrs(CacheMshrs),
-             .Targets(CacheTargets), .Ways(CacheWays), .PrefetchPort(ListPrefetch != 0))
+             .Targets(CacheTargets), .Ways(CacheWays), .PrefetchPort(ListPrefetch != 0), .KeyIsLine(1'b1))
       u_list_cache (
     .clk_i, .rst_ni,
     .req_valid_i(list_req_valid_i), .req_ready_o(list_req_ready_o),

@@ -32,7 +32,9 @@
 // memory request valid, address and id) must equal the RTL's in every cycle,
 // and its step must take the same requests and count the same events (hit,
 // miss, merge, prefetch, the two wait reasons). The first divergence names
-// the cycle, the signal and both values.
+// the cycle, the signal and both values. With KeyIsLine (the _keyline
+// model) the requests' addresses are the keys times the line's bytes and the
+// RTL makes the memory's addresses from the keys alone.
 //
 // Replacement (RunReplacement): requests one at a time, each answered before
 // the next, on keys that crowd a few sets; every hit or miss must be the one
@@ -43,6 +45,7 @@
 #include <random>
 #include <vector>
 
+#include "Vrt_cache_keyline.h"
 #include "Vrt_cache_lines2.h"
 #include "Vrt_cache_lines3.h"
 #include "Vrt_cache_merge2.h"
@@ -75,9 +78,10 @@ struct Request {
 // are applied and settled, before the clock edge.
 class FastLockStep {
  public:
-  FastLockStep(const char* name, int beats, int ways, int mshrs, int targets, bool miss_port, bool prefetch_port)
+  FastLockStep(const char* name, int beats, int ways, int mshrs, int targets, bool miss_port, bool prefetch_port,
+               uint32_t base = kBase)
       : name_(name),
-        cache_(kLines, ways, beats, mshrs, targets, miss_port, kBase, 16u * static_cast<uint64_t>(beats),
+        cache_(kLines, ways, beats, mshrs, targets, miss_port, base, 16u * static_cast<uint64_t>(beats),
                prefetch_port) {}
 
   template <class Dut>
@@ -134,10 +138,11 @@ class FastLockStep {
 };
 
 template <class Dut>
-bool Run(const char* name, int beats, int ways, int mshrs, int targets, bool miss_port, uint64_t count) {
+bool Run(const char* name, int beats, int ways, int mshrs, int targets, bool miss_port, uint64_t count,
+         uint32_t base = kBase) {
   SimCtrl<Dut> sim;
   Dut& dut = sim.top();
-  FastLockStep fast(name, beats, ways, mshrs, targets, miss_port, false);
+  FastLockStep fast(name, beats, ways, mshrs, targets, miss_port, false, base);
   std::mt19937 rng(5);
   std::bernoulli_distribution bubble(0.3), stall(0.2);
   std::uniform_int_distribution<int> latency(1, 30);
@@ -167,7 +172,7 @@ bool Run(const char* name, int beats, int ways, int mshrs, int targets, bool mis
     const uint32_t tag = free_tags[pick];
     free_tags[pick] = free_tags.back();
     free_tags.pop_back();
-    *r = Request{key, kBase + key * 16u * static_cast<uint32_t>(beats), tag};
+    *r = Request{key, base + key * 16u * static_cast<uint32_t>(beats), tag};
   };
 
   auto fail = [&](const char* what) {
@@ -610,6 +615,12 @@ int main(int argc, char** argv) {
   ok = Run<Vrt_cache_ways2>("2-beat lines, 2 ways, 4 miss registers of 3 targets", 2, 2, 4, 3, false, count) && ok;
   ok = Run<Vrt_cache_ways8>("3-beat lines, 8 ways (one set), 3 miss registers of 2 targets, miss-only port", 3, 8,
                             3, 2, true, count) &&
+       ok;
+  // KeyIsLine: no address per miss register, a line's address is its key
+  // times its bytes (base 0).
+  ok = Run<Vrt_cache_keyline>("2-beat lines, 2 ways, 4 miss registers of 3 targets, miss-only port, address from "
+                              "the key",
+                              2, 2, 4, 3, true, count, 0) &&
        ok;
   ok = RunPrefetch<Vrt_cache_prefetch>("2-beat lines, 2 ways, 4 miss registers of 3 targets, prefetch port", 2,
                                        count / 4) &&
