@@ -39,8 +39,8 @@ module rt_core #(
   parameter int unsigned TriIdxWidth /*verilator public*/ = 24,
   parameter int unsigned AddrWidth /*verilator public*/ = 28,
   parameter int unsigned NodeCacheLines /*verilator public*/ = 512,
-  parameter int unsigned ListCacheLines /*verilator public*/ = 256,
-  parameter int unsigned TriCacheLines /*verilator public*/ = 1024,
+  parameter int unsigned ListCacheLines /*verilator public*/ = 64,
+  parameter int unsigned TriCacheLines /*verilator public*/ = 128,
   parameter int unsigned NodeLineBeats = 2,
   parameter int unsigned ListLineBeats = 2,
   parameter int unsigned RayIdWidth = 32,
@@ -49,7 +49,7 @@ module rt_core #(
   parameter int unsigned CacheMshrs /*verilator public*/ = 128,
   // Requests each miss register answers: misses to a line already being
   // fetched join its register (1 = no merging; they wait for the fill).
-  parameter int unsigned CacheTargets /*verilator public*/ = 8,
+  parameter int unsigned CacheTargets /*verilator public*/ = 4,
   // Lines per set of each cache (pseudo-LRU replacement): 1 = direct-mapped.
   parameter int unsigned CacheWays /*verilator public*/ = 4,
   // 1 (the default): the list unit asks for a leaf's entries

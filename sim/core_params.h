@@ -67,7 +67,7 @@ struct CoreConfig {
   fp::Format TravFormat() const { return fp::Format{value[kTravE], value[kTravM]}; }
   // The memory image's format: Format() or a narrower one (rt_core ImgE, ImgM).
   fp::Format ImageFormat() const { return fp::Format{value[kImgE], value[kImgM]}; }
-  // A file-name-safe identifier, e.g. e8m23v8.23p8.23-t32-s32-n24-i24-a28-c256.256.1024-r16-g8-w4-l1-f0.
+  // A file-name-safe identifier, e.g. e8m23v8.23p8.23-t32-s32-n24-i24-a28-c256.64.128-r16-g4-w4-l1-f0.
   std::string Key() const;
   nlohmann::json Json() const;
   // Verilator's -G<Name>=<value> for every parameter.

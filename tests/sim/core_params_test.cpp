@@ -40,24 +40,25 @@ TEST(CoreParams, TableDefaultsAreTheRtlDefaults) {
 
 TEST(CoreParams, KeyNamesEveryParameter) {
   CoreConfig c = DefaultConfig(fp::kFp32);
-  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.1024-r128-g8-w4-l1-f16");
-  EXPECT_EQ(DefaultConfig(fp::kFp16).Key(), "e5m10v5.10p5.10-t128-s32-n24-i24-a28-c512.256.1024-r128-g8-w4-l1-f16");
-  c[kTriCacheLines] = 128;
-  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.128-r128-g8-w4-l1-f16");
-  EXPECT_EQ(c.Json()["TriCacheLines"], 128);
-  EXPECT_EQ(c.VerilatorDefines()[kTriCacheLines], "-GTriCacheLines=128");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.64.128-r128-g4-w4-l1-f16");
+  EXPECT_EQ(DefaultConfig(fp::kFp16).Key(), "e5m10v5.10p5.10-t128-s32-n24-i24-a28-c512.64.128-r128-g4-w4-l1-f16");
+  c[kTriCacheLines] = 1024;
+  c[kListCacheLines] = 256;
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.1024-r128-g4-w4-l1-f16");
+  EXPECT_EQ(c.Json()["TriCacheLines"], 1024);
+  EXPECT_EQ(c.VerilatorDefines()[kTriCacheLines], "-GTriCacheLines=1024");
   c[kCacheTargets] = 1;
-  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.128-r128-g1-w4-l1-f16");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.1024-r128-g1-w4-l1-f16");
   EXPECT_EQ(c.VerilatorDefines()[kCacheTargets], "-GCacheTargets=1");
   c[kCacheWays] = 2;
-  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.128-r128-g1-w2-l1-f16");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.1024-r128-g1-w2-l1-f16");
   EXPECT_EQ(c.VerilatorDefines()[kCacheWays], "-GCacheWays=2");
   c[kListStream] = 0;
-  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.128-r128-g1-w2-l0-f16");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.1024-r128-g1-w2-l0-f16");
   EXPECT_EQ(c.VerilatorDefines()[kListStream], "-GListStream=0");
   EXPECT_EQ(c.Json()["ListStream"], 0);
   c[kListPrefetch] = 0;
-  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.128-r128-g1-w2-l0-f0");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.1024-r128-g1-w2-l0-f0");
   EXPECT_EQ(c.VerilatorDefines().back(), "-GListPrefetch=0");
   EXPECT_EQ(c.Json()["ListPrefetch"], 0);
 }

@@ -636,7 +636,7 @@ TEST_F(SimCli, CoherentRaysMergeNodeMisses) {
   const RunResult s = RunKdrt("sim gen:balls:800 --res 32x32 -q -o " + Path("sim.png") + " --json " + Path("sim.json"));
   ASSERT_EQ(s.exit_code, 0) << s.output;
   const nlohmann::json j = ReadJson(Path("sim.json"));
-  EXPECT_EQ(j["model"]["CacheTargets"].get<int>(), 8);
+  EXPECT_EQ(j["model"]["CacheTargets"].get<int>(), 4);
   EXPECT_GT(j["waits"]["node"]["merged_misses"].get<uint64_t>(), 0u);
   ExpectConsistentBreakdown(j);
 }
@@ -1013,7 +1013,7 @@ TEST_F(SimCli, ModelChoiceFollowsTheScene) {
   const RunResult own = RunKdrt("sim gen:room:300 --node-cache-lines 128 --which-model");
   ASSERT_EQ(own.exit_code, 0) << own.output;
   EXPECT_NE(own.output.find("scene-sized"), std::string::npos) << own.output;
-  EXPECT_NE(own.output.find("c128.256.1024"), std::string::npos) << own.output;
+  EXPECT_NE(own.output.find("c128.64.128"), std::string::npos) << own.output;
 }
 
 TEST_F(SimCli, TraceWritesAnFstWaveform) {
