@@ -364,6 +364,15 @@ void SynthesizeCore(const CoreConfig& config, double period_ns, int jobs) {
     fs::remove(core_path, ec);
     throw;
   }
+  RequireSynthesisOfThisTree(config);
+}
+
+void RequireSynthesisOfThisTree(const CoreConfig& config) {
+  if (!HasSynthesisOfOtherSources(config) || !ReadCoreJson(config).is_null()) return;
+  throw InputError(PhysPath(config) +
+                   ": made from other sources than this tree's: rtl/*.sv or scripts/sram_model.txt changed while "
+                   "it was synthesized (or since), so its figures are of the sources as they were when it started; "
+                   "run 'kdrt synth' again (units whose RTL did not change stay cached)");
 }
 
 }  // namespace kdrt::sim

@@ -96,7 +96,14 @@ std::vector<std::string> SynthParams(const CoreConfig& config);
 // shares <PhysDir()>/units, so a rerun or a configuration with the same
 // units takes them from there. `period_ns` > 0: the script's --period;
 // `jobs` > 0: its --jobs. Throws InputError when the script fails or writes
-// no valid core.json; then there is no core.json.
+// no valid core.json; then there is no core.json. Also throws (keeping the
+// core.json, a synthesis of the sources as they were when it started) when
+// the tree's sources changed while it ran: RequireSynthesisOfThisTree.
 void SynthesizeCore(const CoreConfig& config, double period_ns, int jobs = 0);
+
+// Throws InputError, naming the file, when `config`'s core.json was made from
+// other sources than this tree's (rtl/*.sv or scripts/sram_model.txt changed
+// since; SourcesHash); nothing when it is this tree's or there is none.
+void RequireSynthesisOfThisTree(const CoreConfig& config);
 
 }  // namespace kdrt::sim

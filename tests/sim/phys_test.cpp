@@ -189,6 +189,30 @@ TEST_F(PhysCli, SynthesisOfOtherSourcesIsNotReported) {
   EXPECT_EQ(py.output, tree + "\n");
 }
 
+// A synthesis whose sources changed while it ran (or since) is refused
+// after the run with the file and what to do, not reported: kdrt synth ends
+// with exit status 1 instead of printing another design's figures.
+TEST_F(PhysCli, SynthesisOfChangedSourcesIsAnError) {
+  const sim::CoreConfig config = sim::DefaultConfig(fp::Format{8, 23});
+  ASSERT_EQ(setenv("KDRT_PHYS_DIR", PhysDir().c_str(), 1), 0);
+  EXPECT_NO_THROW(sim::RequireSynthesisOfThisTree(config));  // none yet
+  const std::string core = CoreJsonPath(config.Key());
+  nlohmann::json j = MinimalCoreJson(config);
+  j["sources_fnv1a64"] = sim::SourcesHash();
+  std::ofstream(core) << j.dump();
+  EXPECT_NO_THROW(sim::RequireSynthesisOfThisTree(config));
+  j["sources_fnv1a64"] = "0123456789abcdef";
+  std::ofstream(core) << j.dump();
+  try {
+    sim::RequireSynthesisOfThisTree(config);
+    ADD_FAILURE() << "a synthesis of other sources was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(core + ": made from other sources"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("run 'kdrt synth' again"), std::string::npos) << e.what();
+  }
+  unsetenv("KDRT_PHYS_DIR");
+}
+
 // kdrt synth takes kdrt sim's scene and core options and arrives at the same
 // model key (the one a synthesis is stored under), scene-sized or not.
 TEST_F(PhysCli, SynthComputesTheKeyKdrtSimRuns) {
