@@ -15,7 +15,8 @@
 //   tmin = load(tmin'); tmax = load(tmax')
 //   kz = 0; if |d[kz]| < |d[1]|: kz = 1; if |d[kz]| < |d[2]|: kz = 2
 //   kx = (kz + 1) mod 3; ky = (kx + 1) mod 3; if sign(d[kz]): swap(kx, ky)
-//   sx = d[kx] / d[kz]; sy = d[ky] / d[kz]; sz = 1 / d[kz]
+//   sx = d[kx] / d[kz]; sy = d[ky] / d[kz]; sz = 1 / d[kz] (in one format
+//   inv_d[kz], the same division)
 //   a shear that flushed to zero zeroes its d component (sign kept) and makes
 //   its inv_d an infinity of that sign, at the output
 // The two comparisons of the kz rule are made as three in parallel:
@@ -283,7 +284,7 @@ module rt_ray_setup #(
     endcase
   end
 
-  logic [3*W-1:0] shear;  // sx, sy, sz
+  logic [2*W-1:0] shear;  // sx, sy
   fp_div #(.E(E), .M(M)) u_sx (
     .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TAxis]), .a_i(d_kx), .b_i(d_kz),
     .valid_o(), .res_o(shear[0 +: W])
@@ -292,13 +293,9 @@ module rt_ray_setup #(
     .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TAxis]), .a_i(d_ky), .b_i(d_kz),
     .valid_o(), .res_o(shear[W +: W])
   );
-  fp_div #(.E(E), .M(M)) u_sz (
-    .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TAxis]), .a_i(One), .b_i(d_kz),
-    .valid_o(), .res_o(shear[2*W +: W])
-  );
   // With a wider traversal, the shears wait for its reciprocals.
-  rt_delay #(.Width(3 * W), .Depth(Latency - LatencyI)) u_d_shear (
-    .clk_i, .en_i(en), .d_i(shear), .q_o({out_sz_o, out_sy_o, out_sx_o})
+  rt_delay #(.Width(2 * W), .Depth(Latency - LatencyI)) u_d_shear (
+    .clk_i, .en_i(en), .d_i(shear), .q_o({out_sy_o, out_sx_o})
   );
 
   rt_delay #(.Width(5 * W + 6), .Depth(LDiv + Latency - LatencyI)) u_d_out (
@@ -309,6 +306,26 @@ module rt_ray_setup #(
   rt_delay #(.Width(3 * TW), .Depth(Latency - LatencyT)) u_d_inv (
     .clk_i, .en_i(en), .d_i(inv), .q_o(inv_out)
   );
+  // sz = 1 / d[kz]: in one format the reciprocal of d[kz] already made for
+  // inv_d (the same division of the same operands), else a division of its own.
+  if (TravE == E && TravM == M) begin : g_sz_inv
+    always_comb begin
+      unique case (out_kz_o)
+        2'd0:    out_sz_o = inv_out[TW*0 +: W];
+        2'd1:    out_sz_o = inv_out[TW*1 +: W];
+        default: out_sz_o = inv_out[TW*2 +: W];
+      endcase
+    end
+  end else begin : g_sz_div
+    logic [W-1:0] sz;
+    fp_div #(.E(E), .M(M)) u_sz (
+      .clk_i, .rst_ni, .en_i(en), .valid_i(vld[TAxis]), .a_i(One), .b_i(d_kz),
+      .valid_o(), .res_o(sz)
+    );
+    rt_delay #(.Width(W), .Depth(Latency - LatencyI)) u_d_sz (
+      .clk_i, .en_i(en), .d_i(sz), .q_o(out_sz_o)
+    );
+  end
   rt_delay #(.Width(TagWidth), .Depth(Latency)) u_d_tag (
     .clk_i, .en_i(en), .d_i(in_tag_i), .q_o(out_tag_o)
   );
