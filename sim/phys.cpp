@@ -328,7 +328,7 @@ std::vector<std::string> SynthParams(const CoreConfig& config) {
   return v;
 }
 
-void SynthesizeCore(const CoreConfig& config, double period_ns, int jobs) {
+nlohmann::json SynthesizeCore(const CoreConfig& config, double period_ns, int jobs) {
   const std::string script = std::string(KDRT_SIM_SOURCE_DIR) + "/scripts/synth-core.sh";
   std::error_code ec;
   if (!fs::exists(script, ec)) throw InputError(script + ": not found (the synthesis flow of kdrt synth)");
@@ -356,15 +356,17 @@ void SynthesizeCore(const CoreConfig& config, double period_ns, int jobs) {
                      std::to_string(rc) + "; its messages are above); no core.json was written (the units it " +
                      "finished stay cached in " + shared.string() + ")");
   }
+  nlohmann::json core;
   try {
     // The same checks as a later read: a core.json that kdrt sim would refuse is not kept.
     if (!fs::exists(core_path, ec)) throw InputError(core_path.string() + ": scripts/synth-core.sh wrote no core.json");
-    ReadCoreJson(config);
+    core = ReadCoreJson(config);
   } catch (...) {
     fs::remove(core_path, ec);
     throw;
   }
-  RequireSynthesisOfThisTree(config);
+  if (core.is_null()) RequireSynthesisOfThisTree(config);  // the sources changed while it ran: throws
+  return core;
 }
 
 void RequireSynthesisOfThisTree(const CoreConfig& config) {

@@ -95,11 +95,12 @@ std::vector<std::string> SynthParams(const CoreConfig& config);
 // removed). The script caches each synthesized unit; every configuration
 // shares <PhysDir()>/units, so a rerun or a configuration with the same
 // units takes them from there. `period_ns` > 0: the script's --period;
-// `jobs` > 0: its --jobs. Throws InputError when the script fails or writes
-// no valid core.json; then there is no core.json. Also throws (keeping the
-// core.json, a synthesis of the sources as they were when it started) when
-// the tree's sources changed while it ran: RequireSynthesisOfThisTree.
-void SynthesizeCore(const CoreConfig& config, double period_ns, int jobs = 0);
+// `jobs` > 0: its --jobs. Returns the core.json, as ReadCoreJson reads it.
+// Throws InputError when the script fails or writes no valid core.json; then
+// there is no core.json. Also throws (keeping the core.json, a synthesis of
+// the sources as they were when it started) when the tree's sources changed
+// while it ran: RequireSynthesisOfThisTree.
+nlohmann::json SynthesizeCore(const CoreConfig& config, double period_ns, int jobs = 0);
 
 // Throws InputError, naming the file, when `config`'s core.json was made from
 // other sources than this tree's (rtl/*.sv or scripts/sram_model.txt changed

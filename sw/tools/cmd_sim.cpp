@@ -148,8 +148,7 @@ int RunSim(SimArgs args) {
   if (args.synth && core_json.is_null()) {
     std::fprintf(stderr, "kdrt sim: synthesizing %s on the OSU 0.18 um library (takes minutes)\n",
                  choice.config.Key().c_str());
-    sim::SynthesizeCore(choice.config, 0);
-    core_json = sim::ReadCoreJson(choice.config);
+    core_json = sim::SynthesizeCore(choice.config, 0);
   }
 
   // The waveform is written by the model; it gets a temporary name and is

@@ -102,8 +102,7 @@ int RunSynth(const SynthArgs& args) {
     }
     std::fprintf(stderr, "kdrt synth: synthesizing every unit of %s on the OSU 0.18 um library (takes minutes)\n",
                  config.Key().c_str());
-    sim::SynthesizeCore(config, args.period_ns, args.jobs);
-    core = sim::ReadCoreJson(config);
+    core = sim::SynthesizeCore(config, args.period_ns, args.jobs);
   } else if (!args.quiet) {
     std::fprintf(stderr, "kdrt synth: %s is synthesized already (--force synthesizes it again)\n", config.Key().c_str());
   }
