@@ -252,37 +252,23 @@ module rt_ray_setup #(
   );
 
   // ------------------------------------------------ axis choice, shear
+  // Component k (0, 1 or 2) of three values of W bits.
+  function automatic logic [W-1:0] axis(input logic [3*W-1:0] v, input logic [1:0] k);
+    axis = k == 2'd0 ? v[0 +: W] : k == 2'd1 ? v[W +: W] : v[2*W +: W];
+  endfunction
   logic [1:0]   kz, kx0, ky0, kx, ky;
   logic [3*W-1:0] dk;  // d[0..2] at TAxis
   logic [W-1:0] d_kx, d_ky, d_kz;
-  for (genvar i = 0; i < 3; i++) begin : g_dk
-    assign dk[W*i +: W] = val_axis[W*i +: W];
-  end
+  assign dk = val_axis[3*W-1:0];
   assign kz = lt01 ? (lt12 ? 2'd2 : 2'd1) : (lt02 ? 2'd2 : 2'd0);
   assign kx0 = kz == 2'd2 ? 2'd0 : kz + 2'd1;
   assign ky0 = kx0 == 2'd2 ? 2'd0 : kx0 + 2'd1;
-  always_comb begin
-    unique case (kz)
-      2'd0:    d_kz = dk[W*0 +: W];
-      2'd1:    d_kz = dk[W*1 +: W];
-      default: d_kz = dk[W*2 +: W];
-    endcase
-  end
+  assign d_kz = axis(dk, kz);
   // Swapping kx and ky for a negative d[kz] keeps the triangle winding.
   assign kx = d_kz[W-1] ? ky0 : kx0;
   assign ky = d_kz[W-1] ? kx0 : ky0;
-  always_comb begin
-    unique case (kx)
-      2'd0:    d_kx = dk[W*0 +: W];
-      2'd1:    d_kx = dk[W*1 +: W];
-      default: d_kx = dk[W*2 +: W];
-    endcase
-    unique case (ky)
-      2'd0:    d_ky = dk[W*0 +: W];
-      2'd1:    d_ky = dk[W*1 +: W];
-      default: d_ky = dk[W*2 +: W];
-    endcase
-  end
+  assign d_kx = axis(dk, kx);
+  assign d_ky = axis(dk, ky);
 
   logic [2*W-1:0] shear;  // sx, sy
   fp_div #(.E(E), .M(M)) u_sx (
@@ -309,13 +295,7 @@ module rt_ray_setup #(
   // sz = 1 / d[kz]: in one format the reciprocal of d[kz] already made for
   // inv_d (the same division of the same operands), else a division of its own.
   if (TravE == E && TravM == M) begin : g_sz_inv
-    always_comb begin
-      unique case (out_kz_o)
-        2'd0:    out_sz_o = inv_out[TW*0 +: W];
-        2'd1:    out_sz_o = inv_out[TW*1 +: W];
-        default: out_sz_o = inv_out[TW*2 +: W];
-      endcase
-    end
+    assign out_sz_o = axis(inv_out, out_kz_o);
   end else begin : g_sz_div
     logic [W-1:0] sz;
     fp_div #(.E(E), .M(M)) u_sz (
