@@ -345,7 +345,7 @@ int main(int argc, char** argv) {
     // The walk floor (walk_floor.h): a bare walk of about the tracer's nodes,
     // each ray ending after the leaves the tracer fetched on it.
     std::vector<uint32_t> leaves(per_ray.size());
-    for (size_t i = 0; i < per_ray.size(); ++i) leaves[i] = per_ray[i].leaves;
+    for (size_t i = 0; i < per_ray.size(); ++i) leaves[i] = per_ray[i].leaves + per_ray[i].empty_skipped;
     const bench::WalkFloor floor = bench::MeasureWalkFloor(image, rays, leaves, repeat);
     const double floor_mrays = floor.ns_per_ray > 0 ? 1e3 / floor.ns_per_ray : 0.0;
     std::printf("%-8s %9zu | %8.2f %6u %8.2f | %8.3fs %8.3fs %6.2f | %9.2f %9.2f %6.2f | %6.2f %6.2f | %5.2f%%\n",

@@ -6,8 +6,9 @@
 // The bare walk has the tracer's ray setup (frame, watertight setup, box
 // clip) and its front-to-back order, but no triangle tests, no slack on the
 // cell intervals and no counters; instead of the stop rules it ends each ray
-// after as many leaves as the tracer's walk of that ray fetched, so it visits
-// about the same nodes (the same ones but where the slack moved a decision).
+// after as many leaves as the tracer's walk of that ray reached (fetched, or
+// empty and passed), so it visits about the same nodes (the same ones but
+// where the slack moved a decision), counting the nodes the tracer counts.
 // It is a measurement, not a tracer: its decisions are not the hardware's.
 #pragma once
 
@@ -56,7 +57,8 @@ inline uint64_t BareWalk(const ImageView& image, const std::vector<Ray>& rays, c
     uint32_t leaves_left = leaves[i];
     for (;;) {
       const img::Node n = nodes[node];
-      ++visited;
+      // An empty leaf but the root is passed without a fetch (TraceRayIn).
+      visited += !(n.IsLeaf() && n.Count() == 0 && node != 0);
       if (!n.IsLeaf()) {
         const int axis = n.Axis();
         const float split = n.Split();
@@ -91,7 +93,7 @@ inline uint64_t BareWalk(const ImageView& image, const std::vector<Ray>& rays, c
 }  // namespace detail
 
 // The fastest of `repeat` runs (an fp32 image: raw nodes); leaves[i]: the
-// leaves the tracer fetched on ray i (RayCounters::leaves).
+// leaves the tracer reached on ray i (RayCounters::leaves + empty_skipped).
 inline WalkFloor MeasureWalkFloor(const ImageView& image, const std::vector<Ray>& rays,
                                   const std::vector<uint32_t>& leaves, int repeat) {
   WalkFloor f;

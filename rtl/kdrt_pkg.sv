@@ -1,4 +1,4 @@
-// Constants of the kdrt memory image, version 4: a mirror of
+// Constants of the kdrt memory image, version 5: a mirror of
 // sw/common/image_format.h (the C++ header is the source of truth, and
 // docs/memory-image.md its prose). Every value is little-endian in memory;
 // offsets are in bytes. Also the types shared by the core's units: the
@@ -91,11 +91,10 @@ package kdrt_pkg;
   endfunction
 
   // Node word 1, bits [1:0]: split axis 0/1/2 or NodeLeaf; bits [31:2]: the
-  // above child's index (inner node) or the triangle count (leaf).
+  // triangle count (leaf), or (inner node) bits [29:2] the above child's
+  // index and bits 30, 31 the marks of an empty below and above child.
   // Inner node word 0: split position (fp32); leaf word 0: first list entry.
   localparam logic [1:0] NodeLeaf = 2'd3;
-  localparam int unsigned NodeIndexBits = 30;
-  localparam logic [31:0] MaxIndex = (32'd1 << NodeIndexBits) - 32'd1;
 
   // Triangle record (img::TriangleRecord): v0, v1, v2 as 3 x fp32 each
   // (x, y, z), then the triangle id and two padding words.

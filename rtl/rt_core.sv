@@ -9,9 +9,13 @@
 //
 //   ray in -> rt_ray_setup (into the image's frame) -> rt_clip_unit -> FETCH
 //   FETCH -> node cache -> WAIT_NODE -> inner: rt_trav_unit -> FETCH (push/descend)
+//                                                             -> EXIT (into an empty leaf)
 //                                    -> leaf:  rt_list_unit -> LEAF -> EXIT
 //   rt_list_unit -> list cache -> triangle cache -> rt_isect_unit -> closest-hit merge
-//   EXIT (leaf done): finished, or pop the stack -> FETCH
+//   EXIT (leaf done): finished, or pop the stack -> FETCH (-> EXIT: popped an empty leaf)
+// An inner node marks its children that are empty leaves, and a thread never
+// fetches one: it exits as it would after that leaf (the model's walk counts
+// no node for it).
 //   DONE -> hit out (t back to world units) -> FREE
 //
 // The caches and the memory port are rt_mem_system. The operations and
@@ -195,7 +199,8 @@ module rt_core #(
   assign fetch2_fire = fetch2_valid && node_req2_ready;
 
   // A node: bits [IW-1:0] the split, then the axis (or NodeLeaf), then the
-  // above child's index; a leaf reads {above bits, split bits} as its count
+  // above child's index and the marks of an empty below and above child (the
+  // top two bits); a leaf reads {above bits, split bits} as its count
   // (high) and first list entry (low FirstBits). Node i is slot i % 2^SlotBits
   // of beat i / 2^SlotBits; its below child is the next slot.
   logic                         node_valid, node_ready, node_fire, node_is_leaf;
@@ -210,9 +215,12 @@ module rt_core #(
   logic [31:0]                  node_split, node_first;
   logic [NodeBits-FirstBits-3:0] node_count;
   logic [NodeIdxWidth-1:0]      node_below;
+  logic [NodeBits-IW-5:0]       node_above;
+  logic                         node_below_empty, node_above_empty;
   assign node_addr = node_base_i + (AddrWidth'(node_q[node_tag]) >> SlotBits << 4);
   assign node_bits = node_line[128 * node_addr[NodeOffW-1:4] + NodeBits * node_q[node_tag][SlotBits-1:0] +: NodeBits];
   assign {node_hi, node_axis, node_lo} = node_bits;
+  assign {node_above_empty, node_below_empty, node_above} = node_hi;
   assign node_is_leaf = node_axis == kdrt_pkg::NodeLeaf;
   assign node_payload = {node_hi, node_lo};
   assign node_first = 32'(node_payload[FirstBits-1:0]);
@@ -228,6 +236,7 @@ module rt_core #(
   end
 
   logic                    trav_in_ready, trav_valid, trav_push, trav_overflow, stack_full;
+  logic                    trav_first_empty, trav_second_empty, trav_exit;
   logic [ThW-1:0]          trav_tag;
   kdrt_pkg::trav_action_e  trav_action;
   logic [NodeIdxWidth-1:0] trav_first, trav_second;
@@ -249,18 +258,23 @@ module rt_core #(
   rt_trav_unit #(.E(E), .M(M), .TagWidth(ThW), .NodeIdxWidth(NodeIdxWidth), .TravE(TravE), .TravM(TravM)) u_trav (
     .clk_i, .rst_ni, .in_valid_i(node_valid && !node_is_leaf), .in_ready_o(trav_in_ready),
     .in_tag_i(node_tag), .in_split_i(node_split), .in_below_i(node_below),
-    .in_above_i(NodeIdxWidth'(node_hi)), .in_o_i(trav_o[W*node_axis +: W]),
+    .in_above_i(NodeIdxWidth'(node_above)), .in_below_empty_i(node_below_empty),
+    .in_above_empty_i(node_above_empty), .in_o_i(trav_o[W*node_axis +: W]),
     .in_d_i(trav_d[W*node_axis +: W]), .in_inv_i(trav_inv[TW*node_axis +: TW]),
     .in_t0_i(t0_q[node_tag]), .in_t1_i(t1_q[node_tag]),
     .out_valid_o(trav_valid), .out_ready_i(1'b1), .out_tag_o(trav_tag), .out_action_o(trav_action),
-    .out_first_o(trav_first), .out_second_o(trav_second), .out_ts_o(), .out_ts_lo_o(trav_ts_lo),
+    .out_first_o(trav_first), .out_second_o(trav_second), .out_first_empty_o(trav_first_empty),
+    .out_second_empty_o(trav_second_empty), .out_ts_o(), .out_ts_lo_o(trav_ts_lo),
     .out_ts_hi_o(trav_ts_hi), .out_t0_o(), .out_t1_o(trav_t1)
   );
   assign trav_push = trav_valid && trav_action == kdrt_pkg::TravPush;
   assign trav_overflow = trav_push && stack_full;
+  // The step's next node is an empty leaf: the thread goes to its exit
+  // without fetching it (a pushed far child keeps its mark on the stack).
+  assign trav_exit = trav_action == kdrt_pkg::TravSecond ? trav_second_empty : trav_first_empty;
 
   // ------------------------------------------------------------ leaf exit and stack
-  logic                    exit_valid, exit_done, exit_sel;
+  logic                    exit_valid, exit_done, exit_sel, pop_empty;
   logic [ThW-1:0]          exit_sel_idx;
   logic [NodeIdxWidth-1:0] pop_node;
   logic [W-1:0]            pop_t0, pop_t1, exit_best_t;
@@ -268,10 +282,11 @@ module rt_core #(
   rt_leaf_exit #(.E(E), .M(M), .Threads(Threads), .StackDepth(StackDepth), .NodeIdxWidth(NodeIdxWidth)) u_exit (
     .clk_i, .rst_ni, .clear_i(setup_fire), .clear_idx_i(setup_tag),
     .push_i(trav_push), .push_idx_i(trav_tag), .push_node_i(trav_second), .push_t0_i(trav_ts_lo),
-    .push_t1_i(trav_t1), .push_full_o(stack_full), .req_next_i(exit_next), .sel_valid_o(exit_sel),
+    .push_t1_i(trav_t1), .push_empty_i(trav_second_empty), .push_full_o(stack_full), .req_next_i(exit_next), .sel_valid_o(exit_sel),
     .sel_idx_o(exit_sel_idx), .exit_valid_o(exit_valid),
     .exit_idx_o(exit_idx), .exit_any_i(any_q[exit_idx]), .exit_hit_i(exit_hit), .exit_best_t_i(exit_best_t),
-    .exit_t1_i(t1_q[exit_idx]), .exit_done_o(exit_done), .pop_node_o(pop_node), .pop_t0_o(pop_t0),
+    .exit_t1_i(t1_q[exit_idx]), .exit_done_o(exit_done), .pop_node_o(pop_node), .pop_empty_o(pop_empty),
+    .pop_t0_o(pop_t0),
     .pop_t1_o(pop_t1)
   );
 
@@ -406,8 +421,9 @@ module rt_core #(
     .fetch_idx_i(fetch_idx), .fetch2_i(fetch2_fire), .fetch2_idx_i(fetch2_idx), .node_i(node_fire),
     .node_idx_i(node_tag), .node_leaf_i(node_is_leaf),
     .node_job_i(job_push), .node_tests_i(CountW'(node_count)), .trav_i(trav_valid), .trav_idx_i(trav_tag),
-    .trav_overflow_i(trav_overflow), .issue_i(tri_fire), .issue_idx_i(tri_tag), .retire_i(isect_valid),
+    .trav_overflow_i(trav_overflow), .trav_exit_i(trav_exit), .issue_i(tri_fire), .issue_idx_i(tri_tag), .retire_i(isect_valid),
     .retire_idx_i(isect_tag), .exit_i(exit_valid), .exit_idx_i(exit_idx), .exit_done_i(exit_done),
+    .exit_again_i(pop_empty),
     .out_i(out_fire), .out_idx_i(out_idx)
   );
 
@@ -435,11 +451,12 @@ module rt_core #(
     end
   end
 
-  // Address bits outside a line, the record's id and padding words and id
-  // bits above TriIdxWidth (zero for a scene the parameters fit) are unused.
+  // Address bits outside a line, the record's id and padding words, and id
+  // and child index bits above TriIdxWidth and NodeIdxWidth (zero for a scene
+  // the parameters fit) are unused.
   /* verilator lint_off UNUSEDSIGNAL */
   logic unused_bits;
-  assign unused_bits = ^{node_addr, tri_record, isect_id};
+  assign unused_bits = ^{node_addr, tri_record, isect_id, node_above};
   /* verilator lint_on UNUSEDSIGNAL */
 
 `ifndef SYNTHESIS

@@ -19,7 +19,9 @@
 // stack does. A counter per thread holds the number of such entries.
 // The decision in one cycle: the top entry is looked at before the pop, and
 // the stack is popped only when the thread goes on (exit_done_o low), to the popped
-// node with [pop_t0_o, pop_t1_o]. Stacks are cleared for a new ray (clear_i)
+// node with [pop_t0_o, pop_t1_o]; pop_empty_o: the popped node is an empty
+// leaf (pushed with its parent's mark), which the thread does not fetch: it
+// exits again, with the popped interval's end. Stacks are cleared for a new ray (clear_i)
 // and pushed by traversal steps (push_i; push_full_o: the push is dropped,
 // the ray overflows), with rt_thread_stack's rules when events collide.
 `default_nettype none
@@ -46,6 +48,7 @@ module rt_leaf_exit #(
   input  logic [NodeIdxWidth-1:0] push_node_i,
   input  logic [W-1:0]            push_t0_i,
   input  logic [W-1:0]            push_t1_i,
+  input  logic                    push_empty_i,  // the pushed node is an empty leaf
   output logic                    push_full_o,  // push_idx_i's stack is full: the push is dropped
   // the threads whose leaf is done, in the next cycle
   input  logic [Threads-1:0]      req_next_i,
@@ -62,6 +65,7 @@ module rt_leaf_exit #(
   // the decision: done, or go on to the popped node and interval
   output logic                    exit_done_o,
   output logic [NodeIdxWidth-1:0] pop_node_o,
+  output logic                    pop_empty_o,
   output logic [W-1:0]            pop_t0_o,
   output logic [W-1:0]            pop_t1_o
 );
@@ -97,10 +101,11 @@ module rt_leaf_exit #(
     end
   end
 
-  rt_thread_stack #(.Threads(Threads), .StackDepth(StackDepth), .Width(NodeIdxWidth + 2 * W)) u_stack (
+  rt_thread_stack #(.Threads(Threads), .StackDepth(StackDepth), .Width(1 + NodeIdxWidth + 2 * W)) u_stack (
     .clk_i, .rst_ni, .clear_i, .clear_idx_i,
-    .push_i, .push_idx_i, .push_data_i({push_node_i, push_t0_i, push_t1_i}), .push_full_o,
-    .read_i(next_valid), .read_idx_i(next_idx), .top_empty_o(stack_empty), .top_o({pop_node_o, pop_t0_o, pop_t1_o}),
+    .push_i, .push_idx_i, .push_data_i({push_empty_i, push_node_i, push_t0_i, push_t1_i}), .push_full_o,
+    .read_i(next_valid), .read_idx_i(next_idx), .top_empty_o(stack_empty),
+    .top_o({pop_empty_o, pop_node_o, pop_t0_o, pop_t1_o}),
     .pop_i(pop_ok)
   );
 

@@ -4,9 +4,10 @@
 //   FREE --alloc--> SETUP --clip--> FETCH, or DONE (the ray misses the box)
 //   FETCH --fetch (either port)--> WAIT_NODE --node--> TRAV (inner node), LEAF (a leaf with
 //                    tests) or EXIT (an empty leaf)
-//   TRAV --trav--> FETCH, or DONE (the stack overflowed)
+//   TRAV --trav--> FETCH, EXIT (the next node is an empty leaf, not fetched),
+//                  or DONE (the stack overflowed)
 //   LEAF --> EXIT once all of the leaf's tests are issued and their results back
-//   EXIT --exit--> FETCH (popped), or DONE
+//   EXIT --exit--> FETCH (popped), EXIT (popped an empty leaf), or DONE
 //   DONE --out--> FREE (the hit record is taken)
 //
 // Each event names one thread, which must be in the event's state (checked
@@ -57,6 +58,7 @@ module rt_thread_fsm #(
   input  logic                  trav_i,
   input  logic [ThW-1:0]        trav_idx_i,
   input  logic                  trav_overflow_i,
+  input  logic                  trav_exit_i,   // the step's next node is an empty leaf
   input  logic                  issue_i,
   input  logic [ThW-1:0]        issue_idx_i,
   input  logic                  retire_i,
@@ -64,6 +66,7 @@ module rt_thread_fsm #(
   input  logic                  exit_i,
   input  logic [ThW-1:0]        exit_idx_i,
   input  logic                  exit_done_i,
+  input  logic                  exit_again_i,  // not done: the popped node is an empty leaf
   input  logic                  out_i,
   input  logic [ThW-1:0]        out_idx_i
 );
@@ -144,12 +147,13 @@ module rt_thread_fsm #(
   assign a_out = on_out & done_q;
   assign free_d = (free_q & ~a_alloc) | a_out;
   assign setup_d = (setup_q & ~a_clip) | a_alloc;
-  assign fetch_d = (fetch_q & ~a_fetch) | (clip_miss_i ? '0 : a_clip) | (trav_overflow_i ? '0 : a_trav) |
-                   (exit_done_i ? '0 : a_exit);
+  assign fetch_d = (fetch_q & ~a_fetch) | (clip_miss_i ? '0 : a_clip) |
+                   (trav_overflow_i || trav_exit_i ? '0 : a_trav) | (exit_done_i || exit_again_i ? '0 : a_exit);
   assign wait_d = (wait_q & ~a_node) | a_fetch;
   assign trav_d = (trav_q & ~a_trav) | (node_leaf_i ? '0 : a_node);
   assign leaf_d = (leaf_q & ~a_leaf) | (node_leaf_i && node_job_i ? a_node : '0);
-  assign exit_d = (exit_q & ~a_exit) | a_leaf | (node_leaf_i && !node_job_i ? a_node : '0);
+  assign exit_d = (exit_q & ~a_exit) | a_leaf | (node_leaf_i && !node_job_i ? a_node : '0) |
+                  (!trav_overflow_i && trav_exit_i ? a_trav : '0) | (!exit_done_i && exit_again_i ? a_exit : '0);
   assign done_d = (done_q & ~a_out) | (clip_miss_i ? a_clip : '0) | (trav_overflow_i ? a_trav : '0) |
                   (exit_done_i ? a_exit : '0);
 
@@ -178,11 +182,15 @@ module rt_thread_fsm #(
       if (fetch_i && fetch_q[fetch_idx_i]) state_q[3*fetch_idx_i +: 3] <= SWaitNode;
       if (fetch2_i && fetch_q[fetch2_idx_i]) state_q[3*fetch2_idx_i +: 3] <= SWaitNode;
       if (node_ok) state_q[3*node_idx_i +: 3] <= !node_leaf_i ? STrav : node_job_i ? SLeaf : SExit;
-      if (trav_i && trav_q[trav_idx_i]) state_q[3*trav_idx_i +: 3] <= trav_overflow_i ? SDone : SFetch;
+      if (trav_i && trav_q[trav_idx_i]) begin
+        state_q[3*trav_idx_i +: 3] <= trav_overflow_i ? SDone : trav_exit_i ? SExit : SFetch;
+      end
       for (int z = 0; z < Zs; z++) begin
         if (zero_q[z] && leaf_q[zero_idx_q[z]]) state_q[3*zero_idx_q[z] +: 3] <= SExit;
       end
-      if (exit_i && exit_q[exit_idx_i]) state_q[3*exit_idx_i +: 3] <= exit_done_i ? SDone : SFetch;
+      if (exit_i && exit_q[exit_idx_i]) begin
+        state_q[3*exit_idx_i +: 3] <= exit_done_i ? SDone : exit_again_i ? SExit : SFetch;
+      end
       if (out_i && done_q[out_idx_i]) state_q[3*out_idx_i +: 3] <= SFree;
     end
   end

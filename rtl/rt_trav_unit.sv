@@ -10,6 +10,9 @@
 //   action: first only  if t1 < lo or ts <= 0
 //           second only if hi < t0
 //           push (second, lo, t1) and go first with t1 = hi otherwise
+// The children's empty marks (the node's, img::Node) ride along and leave as
+// the first and second child's (rt_core sends a thread whose next node is an
+// empty leaf to its exit without fetching it).
 // Latency = FpFromF32Latency + FpAddLatency + FpMulLatency cycles.
 //
 // A traversal wider than the triangle test (TravE, TravM above E, M; the
@@ -43,6 +46,8 @@ module rt_trav_unit #(
   input  logic [31:0]             in_split_i,   // fp32 bits from the node
   input  logic [NodeIdxWidth-1:0] in_below_i,   // node index + 1
   input  logic [NodeIdxWidth-1:0] in_above_i,
+  input  logic                    in_below_empty_i,  // the below child is an empty leaf
+  input  logic                    in_above_empty_i,  // the above child is an empty leaf
   input  logic [W-1:0]            in_o_i,       // ray origin on the split axis
   input  logic [W-1:0]            in_d_i,       // ray direction on the split axis
   input  logic [TW-1:0]           in_inv_i,     // 1 / d on the split axis, traversal format
@@ -54,6 +59,8 @@ module rt_trav_unit #(
   output kdrt_pkg::trav_action_e  out_action_o,
   output logic [NodeIdxWidth-1:0] out_first_o,
   output logic [NodeIdxWidth-1:0] out_second_o,
+  output logic                    out_first_empty_o,
+  output logic                    out_second_empty_o,
   output logic [TW-1:0]           out_ts_o,     // traversal format
   output logic [W-1:0]            out_ts_lo_o,  // ts nudged down: the far child's start
   output logic [W-1:0]            out_ts_hi_o,  // ts nudged up: the near child's end
@@ -80,13 +87,16 @@ module rt_trav_unit #(
     .clk_i, .rst_ni, .en_i(en), .valid_i(in_valid_i), .f32_i(in_split_i),
     .valid_o(v1), .res_o(split)
   );
-  localparam int unsigned SideW = TagWidth + 2 * NodeIdxWidth + 4 * W + TW;
+  // A child: its index and its empty mark.
+  localparam int unsigned CW = NodeIdxWidth + 1;
+  localparam int unsigned SideW = TagWidth + 2 * CW + 4 * W + TW;
   logic [SideW-1:0] side0, side1;
-  assign side0 = {in_tag_i, in_below_i, in_above_i, in_o_i, in_d_i, in_inv_i, in_t0_i, in_t1_i};
+  assign side0 = {in_tag_i, in_below_empty_i, in_below_i, in_above_empty_i, in_above_i, in_o_i, in_d_i, in_inv_i,
+                  in_t0_i, in_t1_i};
   rt_delay #(.Width(SideW), .Depth(LConv)) u_side1 (.clk_i, .en_i(en), .d_i(side0), .q_o(side1));
 
   logic [TagWidth-1:0]     tag1;
-  logic [NodeIdxWidth-1:0] below1, above1;
+  logic [CW-1:0]           below1, above1;
   logic [W-1:0]            o1, d1, t01, t11;
   logic [TW-1:0]           inv1;
   assign {tag1, below1, above1, o1, d1, inv1, t01, t11} = side1;
@@ -115,13 +125,13 @@ module rt_trav_unit #(
     .clk_i, .rst_ni, .en_i(en), .valid_i(v1), .a_i(split_t), .b_i(o1_t), .sub_i(1'b1),
     .valid_o(v2), .res_o(diff)
   );
-  localparam int unsigned Side2W = TagWidth + 2 * NodeIdxWidth + 2 * W + TW + 1;
+  localparam int unsigned Side2W = TagWidth + 2 * CW + 2 * W + TW + 1;
   logic [Side2W-1:0] side2;
   rt_delay #(.Width(Side2W), .Depth(LAdd)) u_side2 (
     .clk_i, .en_i(en), .d_i({tag1, below1, above1, inv1, t01, t11, below_first1}), .q_o(side2)
   );
   logic [TagWidth-1:0]     tag2;
-  logic [NodeIdxWidth-1:0] below2, above2;
+  logic [CW-1:0]           below2, above2;
   logic [TW-1:0]           inv2;
   logic [W-1:0]            t02, t12;
   logic                    bf2;
@@ -134,7 +144,7 @@ module rt_trav_unit #(
     .clk_i, .rst_ni, .en_i(en), .valid_i(v2), .a_i(diff), .b_i(inv2),
     .valid_o(v3), .res_o(ts3)
   );
-  localparam int unsigned Side3W = TagWidth + 2 * NodeIdxWidth + 2 * W + 1;
+  localparam int unsigned Side3W = TagWidth + 2 * CW + 2 * W + 1;
   logic [Side3W-1:0] side3;
   rt_delay #(.Width(Side3W), .Depth(LMul)) u_side3 (
     .clk_i, .en_i(en), .d_i({tag2, below2, above2, t02, t12, bf2}), .q_o(side3)
@@ -142,7 +152,7 @@ module rt_trav_unit #(
   fp_nudge #(.E(TravE), .M(TravM), .K(SlackUlps)) u_nudge (.a_i(ts3), .up_o(hi3), .down_o(lo3));
 
   // The ends in the test's format: as they are, or moved outwards into it.
-  logic [NodeIdxWidth-1:0] below3, above3;
+  logic [CW-1:0]           below3, above3;
   logic                    bf3;
   if (Mixed) begin : g_round_out
     fp_round_out #(.E(E), .M(M), .WE(TravE), .WM(TravM), .Up(1'b0)) u_lo (
@@ -177,8 +187,8 @@ module rt_trav_unit #(
     .clk_i, .rst_ni, .en_i(en), .valid_i(1'b1), .a_i(out_ts_hi_o), .b_i(out_t0_o),
     .valid_o(), .lt_o(ts_lt_t0), .le_o(), .eq_o(), .min_o(), .max_o()
   );
-  assign out_first_o = bf3 ? below3 : above3;
-  assign out_second_o = bf3 ? above3 : below3;
+  assign {out_first_empty_o, out_first_o} = bf3 ? below3 : above3;
+  assign {out_second_empty_o, out_second_o} = bf3 ? above3 : below3;
   assign out_action_o = (t1_lt_ts || ts_le0) ? kdrt_pkg::TravFirst
                        : (ts_lt_t0 ? kdrt_pkg::TravSecond : kdrt_pkg::TravPush);
 
@@ -186,10 +196,10 @@ module rt_trav_unit #(
   rt_stream_check #(.Width(SideW + 32), .Name("rt_trav_unit in")) u_in_check (
     .clk_i, .rst_ni, .valid_i(in_valid_i), .ready_i(in_ready_o), .payload_i({side0, in_split_i})
   );
-  rt_stream_check #(.Width(TagWidth + 2 + 2 * NodeIdxWidth + 4 * W + TW), .Name("rt_trav_unit out")) u_out_check (
+  rt_stream_check #(.Width(TagWidth + 2 + 2 * CW + 4 * W + TW), .Name("rt_trav_unit out")) u_out_check (
     .clk_i, .rst_ni, .valid_i(out_valid_o), .ready_i(out_ready_i),
-    .payload_i({out_tag_o, out_action_o, out_first_o, out_second_o, out_ts_o, out_ts_lo_o, out_ts_hi_o, out_t0_o,
-                out_t1_o})
+    .payload_i({out_tag_o, out_action_o, out_first_empty_o, out_first_o, out_second_empty_o, out_second_o, out_ts_o,
+                out_ts_lo_o, out_ts_hi_o, out_t0_o, out_t1_o})
   );
 
 endmodule

@@ -277,6 +277,14 @@ class FastCore {
   std::array<uint64_t, kPerfBits>& perf() { return result_.perf; }
   bool Busy() const { return in_state_[kFree] != static_cast<uint64_t>(threads_); }
   void Move(int t, State to_state) { moves_[n_moves_++] = {t, to_state}; }
+  // A traversal step or a pop that goes on to thread t's next node: to
+  // FETCH, or to EXIT again without a fetch when the node is an empty leaf
+  // (its parent marks it; the path holds it, the counters do not).
+  State GoOn(int t) {
+    if (th_[t].next->count != 0) return kFetch;
+    ++th_[t].next;
+    return kExit;
+  }
 
   const RayPaths& paths_;
   const FastReference& ref_;
@@ -389,7 +397,7 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
     const int t = trav_pipe_.front().thread;
     trav_pipe_.pop();
     const bool overflow = th_[t].next == th_[t].end;  // the push met a full stack
-    Move(t, overflow ? kDone : kFetch);
+    Move(t, overflow ? kDone : GoOn(t));
     if (overflow) ++perf[kBitOverflow];
   }
   // The test retired this cycle (isect_valid), if any.
@@ -519,7 +527,7 @@ void FastCore<Mem>::Cycle(uint64_t cycle) {
   // EXIT but the one it chose in the previous cycle, which exits in this one
   // (rt_leaf_exit: the choice's top entry is read and registered first).
   const int ex = exit_chosen_;
-  if (ex >= 0) Move(ex, th_[ex].next == th_[ex].end ? kDone : kFetch);
+  if (ex >= 0) Move(ex, th_[ex].next == th_[ex].end ? kDone : GoOn(ex));
   int chosen = -1;
   if (in_state_[kExit] > (ex >= 0 ? 1u : 0u)) {
     if (ex >= 0) in_set_[kExit].Reset(ex);

@@ -115,8 +115,8 @@ class TreeWriter {
   static constexpr const char* kListTooLong = "a leaf list does not fit the 30-bit count or the 32-bit list index";
 
   uint32_t NextIndex() const {
-    if (nodes_->size() > img::kMaxIndex) {
-      Fail("kd-tree has more than 2^30 nodes, too many for the memory image");
+    if (nodes_->size() > img::kMaxChildIndex) {
+      Fail("kd-tree has more than 2^28 nodes, too many for the memory image");
     }
     return static_cast<uint32_t>(nodes_->size());
   }

@@ -738,8 +738,8 @@ void Assemble(const std::vector<img::Node>& top, const std::vector<uint32_t>& to
   for (size_t i = 0; i < top.size(); ++i) {
     final_index[i + 1] = final_index[i] + (subtree_at[i] >= 0 ? subtrees[subtree_at[i]].nodes.size() : 1);
   }
-  if (final_index[top.size()] > img::kMaxIndex + uint64_t{1}) {
-    writer->Fail("kd-tree has more than 2^30 nodes, too many for the memory image");
+  if (final_index[top.size()] > img::kMaxChildIndex + uint64_t{1}) {
+    writer->Fail("kd-tree has more than 2^28 nodes, too many for the memory image");
   }
   for (size_t i = 0; i < top.size(); ++i) {
     if (subtree_at[i] >= 0) {

@@ -1,4 +1,4 @@
-// The kdrt memory image, version 4: the bytes a hardware core reads.
+// The kdrt memory image, version 5: the bytes a hardware core reads.
 // docs/memory-image.md is the prose specification of this header; the RTL
 // package (rtl/kdrt_pkg.sv) mirrors the constants. Everything is little-endian,
 // every section starts on a 64-byte boundary.
@@ -21,7 +21,7 @@
 namespace kdrt::img {
 
 inline constexpr char kMagic[8] = {'K', 'D', 'R', 'T', 'I', 'M', 'G', '\0'};
-inline constexpr uint32_t kVersion = 4;
+inline constexpr uint32_t kVersion = 5;
 inline constexpr uint32_t kHeaderBytes = 128;
 inline constexpr uint32_t kSectionAlign = 64;
 inline constexpr uint32_t kNodeBytes = 8;
@@ -52,11 +52,18 @@ static_assert(sizeof(Header) == kHeaderBytes, "header layout");
 
 // Node word 1, bits [1:0]: the split axis (0 = x, 1 = y, 2 = z) or kLeaf.
 inline constexpr uint32_t kLeaf = 3;
+// The largest child index an inner node holds (28 bits: two bits above it
+// mark empty children), and so the most nodes a tree may have, less one.
+inline constexpr uint32_t kMaxChildIndex = (1u << 28) - 1;
 
 // One 8-byte kd-tree node (pbrt-style).
-//   inner: word0 = split position (float bits); word1 = axis | above << 2,
-//          where `above` is the node index of the child on the +axis side;
-//          the child on the -axis side ("below") is always this index + 1.
+//   inner: word0 = split position (float bits); word1 = axis | above << 2
+//          | below_empty << 30 | above_empty << 31, where `above` (28 bits)
+//          is the node index of the child on the +axis side; the child on
+//          the -axis side ("below") is always this index + 1. A child that
+//          is an empty leaf is marked in its parent, so that the hardware
+//          never fetches it (docs/memory-image.md); a kd-tree's own nodes
+//          (KdTree::nodes) leave the marks zero, the memory image sets them.
 //   leaf:  word0 = index of the first entry in the leaf lists;
 //          word1 = kLeaf | count << 2 (count 0 = empty leaf).
 struct Node {
@@ -78,7 +85,13 @@ struct Node {
     std::memcpy(&f, &word0, 4);
     return f;
   }
-  uint32_t AboveChild() const { return word1 >> 2; }
+  uint32_t AboveChild() const { return (word1 >> 2) & kMaxChildIndex; }
+  // Inner nodes: the child on the -axis / +axis side is an empty leaf.
+  bool BelowEmpty() const { return (word1 >> 30 & 1u) != 0; }
+  bool AboveEmpty() const { return (word1 >> 31) != 0; }
+  Node WithEmptyChildren(bool below_empty, bool above_empty) const {
+    return Node{word0, (word1 & ~(3u << 30)) | uint32_t{below_empty} << 30 | uint32_t{above_empty} << 31};
+  }
   uint32_t FirstEntry() const { return word0; }
   uint32_t Count() const { return word1 >> 2; }
 };
@@ -93,13 +106,14 @@ inline constexpr uint32_t kMaxIndex = (1u << 30) - 1;
 // k of a beat at bits [k * NodeBits, (k + 1) * NodeBits), little-endian), a
 // node never straddling two beats. W > 16: 2 nodes of 64 bits; W <= 16: 3
 // nodes of 42 bits. Within a node, with H = NodeBits - W - 2:
-//   bits [W-1:0]           inner: the split (format bits)
-//   bits [W+1:W]           the axis 0/1/2, or kLeaf
-//   bits [NodeBits-1:W+2]  inner: the above child's index (H bits)
+//   bits [W-1:0]               inner: the split (format bits)
+//   bits [W+1:W]               the axis 0/1/2, or kLeaf
+//   bits [NodeBits-3:W+2]      inner: the above child's index (H - 2 bits)
+//   bits [NodeBits-1:NodeBits-2] inner: below child empty, above child empty
 // A leaf reads the other NodeBits - 2 bits as one number {bits above the
 // axis, bits below it}: its low FirstBits() are the first list entry, the
 // rest the count. For W = 32 this is exactly img::Node (word 0 the split or
-// first entry, word 1 axis | above << 2 or kLeaf | count << 2).
+// first entry, word 1 axis | above << 2 | marks << 30 or kLeaf | count << 2).
 //
 // Node indices address slots: node i is slot i % 4 of beat i / 4 when 3
 // nodes share a beat (slot 3 is never used), slot i % 2 of beat i / 2 when
@@ -120,7 +134,10 @@ struct ImageLayout {
   int Width() const { return 1 + e + m; }
   int NodesPerBeat() const { return Width() <= 16 ? 3 : 2; }
   int NodeBits() const { return NodesPerBeat() == 3 ? 42 : 64; }
+  // Bits above the axis: a leaf's high payload, an inner node's above
+  // child (ChildBits) and its two empty-child marks.
   int AboveBits() const { return NodeBits() - Width() - 2; }
+  int ChildBits() const { return AboveBits() - 2; }
   int FirstBits() const { return NodesPerBeat() == 3 ? 24 : 32; }
   int CountBits() const { return NodeBits() - 2 - FirstBits(); }
   // Index bits that select the slot within a beat.
@@ -142,7 +159,7 @@ struct ImageLayout {
     return (n + TrianglesPerLine() - 1) / TrianglesPerLine() * TriangleLineBytes();
   }
   // The largest above-child index and leaf count the fields hold.
-  uint64_t MaxAbove() const { return AboveBits() >= 30 ? kMaxIndex : (uint64_t{1} << AboveBits()) - 1; }
+  uint64_t MaxAbove() const { return ChildBits() >= 28 ? kMaxChildIndex : (uint64_t{1} << ChildBits()) - 1; }
   uint64_t MaxFirst() const { return (uint64_t{1} << FirstBits()) - 1; }
   uint64_t MaxCount() const { return CountBits() >= 30 ? kMaxIndex : (uint64_t{1} << CountBits()) - 1; }
 

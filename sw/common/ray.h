@@ -36,13 +36,16 @@ struct Hit {
 enum class Query : uint8_t { kClosest, kAny };
 
 struct RayCounters {
-  uint32_t nodes = 0;      // inner and leaf nodes fetched
-  uint32_t leaves = 0;     // leaf nodes fetched (including empty ones)
+  uint32_t nodes = 0;      // inner and leaf nodes fetched (an empty leaf only as the root:
+                           // any other is marked in its parent and not fetched)
+  uint32_t leaves = 0;     // leaf nodes fetched
+  uint32_t empty_skipped = 0;  // empty leaves passed without a fetch (marked in their parent)
   uint32_t tri_tests = 0;  // ray/triangle tests
   uint32_t overflows = 0;  // rays ended by a push onto a full stack (TraceOptions::stack_depth)
   RayCounters& operator+=(const RayCounters& o) {
     nodes += o.nodes;
     leaves += o.leaves;
+    empty_skipped += o.empty_skipped;
     tri_tests += o.tri_tests;
     overflows += o.overflows;
     return *this;

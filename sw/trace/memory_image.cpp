@@ -114,7 +114,7 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, co
   if (!tree.nodes.empty() && layout.IndexOfPosition(static_cast<uint32_t>(tree.nodes.size() - 1)) > layout.MaxAbove()) {
     throw InputError(scene.source, 0,
                      std::to_string(tree.nodes.size()) + " kd-tree nodes do not fit the " +
-                         std::to_string(layout.AboveBits()) + "-bit child index of a " + fmt_name +
+                         std::to_string(std::min(layout.ChildBits(), 28)) + "-bit child index of a " + fmt_name +
                          " image node (docs/memory-image.md)");
   }
   if (tree.lists.size() > layout.MaxFirst() + 1) {
@@ -154,8 +154,10 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, co
   std::vector<uint8_t> bytes(total + 8, 0);
   std::memcpy(bytes.data(), &h, sizeof(h));
   // tree.nodes is in layout order with positions as indices (img::Node,
-  // binary32 splits); each goes to its slot with its indices re-encoded.
+  // binary32 splits); each goes to its slot with its indices re-encoded and
+  // an inner node's empty children marked.
   const int w = layout.Width();
+  const auto empty_leaf = [&tree](uint32_t p) { return tree.nodes[p].IsLeaf() && tree.nodes[p].Count() == 0; };
   for (size_t p = 0; p < tree.nodes.size(); ++p) {
     const img::Node& n = tree.nodes[p];
     const uint32_t index = layout.IndexOfPosition(static_cast<uint32_t>(p));
@@ -169,7 +171,9 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, co
     } else {
       SetBits(beat, at, w, StoredBits(layout, n.Split()));
       SetBits(beat, at + w, 2, static_cast<uint64_t>(n.Axis()));
-      SetBits(beat, at + w + 2, layout.AboveBits(), layout.IndexOfPosition(n.AboveChild()));
+      SetBits(beat, at + w + 2, layout.ChildBits(), layout.IndexOfPosition(n.AboveChild()));
+      const uint64_t marks = uint64_t{empty_leaf(static_cast<uint32_t>(p) + 1)} | uint64_t{empty_leaf(n.AboveChild())} << 1;
+      SetBits(beat, at + w + 2 + layout.ChildBits(), 2, marks);
     }
   }
   if (!tree.lists.empty()) {
@@ -237,8 +241,11 @@ img::Node ImageView::DecodeNode(uint32_t i) const {
     const uint64_t count = payload >> layout_.FirstBits();
     return img::Node::Leaf(static_cast<uint32_t>(first), static_cast<uint32_t>(count));
   }
+  const uint64_t above = hi & ((uint64_t{1} << layout_.ChildBits()) - 1);
+  const uint64_t marks = hi >> layout_.ChildBits();
   return img::Node::Inner(static_cast<int>(tag), LoadedFloat(layout_, static_cast<uint32_t>(lo)),
-                          static_cast<uint32_t>(hi));
+                          static_cast<uint32_t>(above))
+      .WithEmptyChildren((marks & 1u) != 0, (marks & 2u) != 0);
 }
 
 img::TriangleRecord ImageView::DecodeTriangle(uint32_t id) const {
@@ -320,6 +327,15 @@ ImageView::ImageView(const uint8_t* data, size_t size, const std::string& name)
     }
     if (!valid_child(i, next(i)) || !valid_child(i, n.AboveChild())) {
       fail("node " + std::to_string(i) + ": child index out of range");
+    }
+    // The hardware skips a child marked empty without reading it: the marks
+    // must be exactly the children that are empty leaves.
+    const auto empty_leaf = [this](uint32_t c) {
+      const img::Node child = node(c);
+      return child.IsLeaf() && child.Count() == 0;
+    };
+    if (n.BelowEmpty() != empty_leaf(next(i)) || n.AboveEmpty() != empty_leaf(n.AboveChild())) {
+      fail("node " + std::to_string(i) + ": its empty-child marks do not match its children");
     }
     // An fp32 split is finite; a packed one may have overflowed to an
     // infinity (a format too narrow for the scene: a warned case, traced as

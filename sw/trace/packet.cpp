@@ -308,7 +308,9 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
       continue;
     }
     const img::Node nd = raw_nodes[node];
-    nodes -= act;
+    // An empty leaf other than the root is not fetched (TraceRayIn).
+    const bool counted = !(nd.IsLeaf() && nd.Count() == 0 && node != 0);
+    if (counted) nodes -= act;
     ++fetched;
     if (!nd.IsLeaf()) {
       const int axis = nd.Axis();
@@ -444,7 +446,8 @@ KDRT_HOT_INLINE unsigned PacketWalk(const ImageView& image, const Ray* rays, int
           b.prim = id;
         }
       };
-      ++walked[l].leaves;
+      walked[l].leaves += counted;
+      walked[l].empty_skipped += !counted;
       walked[l].tri_tests += count;
       const float leaf_tmax = b.t;
       if ((together >> l) & 1) {

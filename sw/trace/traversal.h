@@ -333,7 +333,12 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
     uint32_t node = 0;
     for (;;) {
       const img::Node n = kRawNoPath || raw_nodes ? raw_nodes[node] : image.node(node);
-      ++walked.nodes;
+      // An empty leaf other than the root is marked in its parent: the
+      // hardware goes to the leaf's exit without fetching it, so it counts
+      // neither as a node nor as a leaf (it stays on the path).
+      const bool fetched = !(n.IsLeaf() && n.Count() == 0 && node != 0);
+      walked.nodes += fetched;
+      walked.empty_skipped += !fetched;
       if constexpr (!kRawNoPath) {
         if (path) path->push_back(node);
       }
@@ -364,7 +369,7 @@ TraceResult<Ai> TraceRayIn(const At& at, const Ai& ai, const ImageView& image, c
         }
         continue;
       }
-      ++walked.leaves;
+      walked.leaves += fetched;
       const uint32_t count = n.Count();
       const uint32_t* ids = lists + n.FirstEntry();
       const typename Ai::T leaf_tmax = best.t;

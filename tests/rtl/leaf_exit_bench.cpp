@@ -41,6 +41,7 @@ constexpr uint32_t kNodeMask = 0xFF;
 
 struct Entry {
   uint32_t node, t0, t1;
+  bool empty;  // the pushed node's empty-leaf mark
 };
 
 uint32_t RandomValue(Format f, Rng& rng) {
@@ -85,7 +86,7 @@ bool Run(Format f, uint64_t cycles) {
     const unsigned ci = rng.Below(kThreads), ui = rng.Below(kThreads);
     unsigned req_next = 0;
     for (unsigned t = 0; t < kThreads; ++t) req_next |= static_cast<unsigned>(rng.Chance(p_req)) << t;
-    const Entry data{rng.Bits32() & kNodeMask, value(), value()};
+    const Entry data{rng.Bits32() & kNodeMask, value(), value(), rng.Chance(0.5)};
     const bool hit = rng.Chance(p_hit);
     const bool any = rng.Chance(0.25);
     const uint32_t best_t = value(), t1 = value();
@@ -96,6 +97,7 @@ bool Run(Format f, uint64_t cycles) {
     dut.push_node_i = data.node;
     dut.push_t0_i = data.t0;
     dut.push_t1_i = data.t1;
+    dut.push_empty_i = data.empty;
     dut.req_next_i = req_next;
     dut.exit_hit_i = hit;
     dut.exit_any_i = any;
@@ -139,7 +141,8 @@ bool Run(Format f, uint64_t cycles) {
       bad = bad || dut.exit_idx_o != idx || static_cast<bool>(dut.exit_done_o) != done;
       if (!model[idx].empty()) {
         const Entry& top = model[idx].back();
-        bad = bad || dut.pop_node_o != top.node || dut.pop_t0_o != top.t0 || dut.pop_t1_o != top.t1;
+        bad = bad || dut.pop_node_o != top.node || dut.pop_t0_o != top.t0 || dut.pop_t1_o != top.t1 ||
+              static_cast<bool>(dut.pop_empty_o) != top.empty;
       }
     }
     if (bad) {

@@ -82,6 +82,8 @@ bool Run(const char* name, unsigned threads, unsigned count_width, uint64_t cycl
     const bool clip_miss = rng.Chance(0.2), node_leaf = rng.Chance(0.4), node_job = rng.Chance(0.8);
     const uint32_t tests = rng.Chance(0.05) ? 0 : 1 + rng.Below(rng.Chance(0.1) ? max_tests : 3);
     const bool overflow = rng.Chance(0.1), exit_done = rng.Chance(0.4);
+    // The next node an empty leaf: after a step (unless it overflowed) or a pop.
+    const bool trav_exit = rng.Chance(0.3), exit_again = rng.Chance(0.3);
     // Idle indices and payloads are random too.
     auto idx = [&](int t) { return t >= 0 ? static_cast<unsigned>(t) : rng.Below(threads); };
     dut.alloc_i = alloc;
@@ -102,6 +104,7 @@ bool Run(const char* name, unsigned threads, unsigned count_width, uint64_t cycl
     dut.trav_i = tr >= 0;
     dut.trav_idx_i = idx(tr);
     dut.trav_overflow_i = overflow;
+    dut.trav_exit_i = trav_exit;
     dut.issue_i = is >= 0;
     dut.issue_idx_i = idx(is);
     dut.retire_i = re >= 0;
@@ -109,6 +112,7 @@ bool Run(const char* name, unsigned threads, unsigned count_width, uint64_t cycl
     dut.exit_i = ex >= 0;
     dut.exit_idx_i = idx(ex);
     dut.exit_done_i = exit_done;
+    dut.exit_again_i = exit_again;
     dut.out_i = ou >= 0;
     dut.out_idx_i = idx(ou);
     sim.Settle();
@@ -154,7 +158,7 @@ bool Run(const char* name, unsigned threads, unsigned count_width, uint64_t cycl
       go(no, !node_leaf ? kTrav : node_job ? kLeaf : kExit);
       if (node_leaf && node_job) next[no].remaining = tests;
     }
-    if (tr >= 0) go(tr, overflow ? kDone : kFetch);
+    if (tr >= 0) go(tr, overflow ? kDone : trav_exit ? kExit : kFetch);
     for (unsigned t = 0; t < threads; ++t) {
       if (th[t].state == kLeaf && th[t].remaining == 0 && th[t].outstanding == 0) go(t, kExit);
     }
@@ -164,7 +168,7 @@ bool Run(const char* name, unsigned threads, unsigned count_width, uint64_t cycl
     }
     if (re >= 0) --next[re].outstanding;
     both += is >= 0 && is == re;
-    if (ex >= 0) go(ex, exit_done ? kDone : kFetch);
+    if (ex >= 0) go(ex, exit_done ? kDone : exit_again ? kExit : kFetch);
     if (ou >= 0) go(ou, kFree);
     th = next;
     unsigned exit_next = 0;
@@ -175,7 +179,7 @@ bool Run(const char* name, unsigned threads, unsigned count_width, uint64_t cycl
       return false;
     }
   }
-  const std::array<std::pair<State, State>, 12> must = {{{kFree, kSetup},
+  const std::array<std::pair<State, State>, 14> must = {{{kFree, kSetup},
                                                          {kSetup, kFetch},
                                                          {kSetup, kDone},
                                                          {kFetch, kWaitNode},
@@ -184,8 +188,10 @@ bool Run(const char* name, unsigned threads, unsigned count_width, uint64_t cycl
                                                          {kWaitNode, kExit},
                                                          {kTrav, kFetch},
                                                          {kTrav, kDone},
+                                                         {kTrav, kExit},
                                                          {kLeaf, kExit},
                                                          {kExit, kFetch},
+                                                         {kExit, kExit},
                                                          {kExit, kDone}}};
   bool covered = both > 0 && (threads == 1 || both_fetches > 0) && seen[kDone][kFree] > 0;
   for (const auto& [a, b] : must) covered = covered && seen[a][b] > 0;

@@ -36,7 +36,7 @@ using fp::Format;
 using fp::SoftArith;
 
 struct In {
-  uint32_t tag, below, above;
+  uint32_t tag, below, above;  // bit 24: the child's empty mark
   float split;
   uint32_t o, d, t0, t1;  // test-format bits
   uint32_t inv;           // traversal-format bits
@@ -128,8 +128,8 @@ In RandomInput(const SoftArith& at, const SoftArith& ai, std::mt19937& rng, uint
   std::uniform_real_distribution<float> u(-10.0f, 10.0f);
   In in;
   in.tag = rng() & 0xF;
-  in.below = rng() & 0xFFFFFF;
-  in.above = rng() & 0xFFFFFF;
+  in.below = rng() & 0x1FFFFFF;
+  in.above = rng() & 0x1FFFFFF;
   float o = u(rng);
   float d = u(rng);
   switch (i % 8) {
@@ -220,8 +220,10 @@ bool RunPreset(Format f, Format trav, uint64_t count) {
   unit.drive = [](Dut& dut, const In& in) {
     dut.in_tag_i = in.tag;
     dut.in_split_i = fp::BitsOf(in.split);
-    dut.in_below_i = in.below;
-    dut.in_above_i = in.above;
+    dut.in_below_i = in.below & 0xFFFFFF;
+    dut.in_above_i = in.above & 0xFFFFFF;
+    dut.in_below_empty_i = in.below >> 24;
+    dut.in_above_empty_i = in.above >> 24;
     dut.in_o_i = in.o;
     dut.in_d_i = in.d;
     dut.in_inv_i = in.inv;
@@ -229,7 +231,8 @@ bool RunPreset(Format f, Format trav, uint64_t count) {
     dut.in_t1_i = in.t1;
   };
   unit.read = [](const Dut& dut) {
-    return Out{dut.out_tag_o, dut.out_action_o, dut.out_first_o, dut.out_second_o,
+    return Out{dut.out_tag_o, dut.out_action_o, dut.out_first_o | uint32_t{dut.out_first_empty_o} << 24,
+               dut.out_second_o | uint32_t{dut.out_second_empty_o} << 24,
                static_cast<uint32_t>(dut.out_ts_o), static_cast<uint32_t>(dut.out_ts_lo_o),
                static_cast<uint32_t>(dut.out_ts_hi_o), static_cast<uint32_t>(dut.out_t0_o),
                static_cast<uint32_t>(dut.out_t1_o)};

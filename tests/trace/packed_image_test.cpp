@@ -78,10 +78,20 @@ TEST(PackedImage, Fp32LayoutIsTheFp32RecordsByteForByte) {
   EXPECT_EQ(RepackImage(v, img::ImageLayout{}), p.bytes);
   // The nodes and triangles are img::Node and img::TriangleRecord as stored.
   const img::Header& h = v.header();
+  // An inner node marks its children that are empty leaves (the tree's own
+  // nodes leave the marks zero).
+  const auto& nodes = p.image.tree.nodes;
+  const auto empty_leaf = [&nodes](uint32_t c) { return nodes[c].IsLeaf() && nodes[c].Count() == 0; };
+  uint32_t marked = 0;
   for (uint32_t i = 0; i < h.node_count; ++i) {
-    const img::Node n = p.image.tree.nodes[i];
+    img::Node n = nodes[i];
+    if (!n.IsLeaf()) {
+      n = n.WithEmptyChildren(empty_leaf(i + 1), empty_leaf(n.AboveChild()));
+      marked += n.BelowEmpty() + n.AboveEmpty();
+    }
     ASSERT_EQ(std::memcmp(p.bytes.data() + h.node_offset + 8ull * i, &n, 8), 0) << i;
   }
+  EXPECT_GT(marked, 0u);
   for (uint32_t t = 0; t < h.tri_count; ++t) {
     img::TriangleRecord r;
     std::memcpy(&r, p.bytes.data() + h.tri_offset + 48ull * t, 48);
@@ -265,16 +275,26 @@ TEST(PackedImage, RejectsCorruptPackedImages) {
   EXPECT_THROW(ImageView(corrupt([&](auto& b) { header(b)->format_m = 0; })), InputError);
   EXPECT_THROW(ImageView(corrupt([&](auto& b) { header(b)->reserved[3] = 1; })), InputError);
   // The root's above child moved to slot 3 of its beat, which holds no node:
-  // bits [41:18] of the root are its index.
+  // bits [39:18] of the root are its index.
   EXPECT_THROW(ImageView(corrupt([&](auto& b) {
                  uint8_t* root = b.data() + header(b)->node_offset;
                  uint64_t bits = 0;
                  std::memcpy(&bits, root, 8);
                  const uint64_t above = 7;  // beat 1, slot 3
-                 bits = (bits & ~(((uint64_t{1} << 24) - 1) << 18)) | above << 18;
+                 bits = (bits & ~(((uint64_t{1} << 22) - 1) << 18)) | above << 18;
                  std::memcpy(root, &bits, 8);
                })),
                InputError);
+  // Either empty-child mark of the root flipped (bits 40, 41): the core would
+  // skip a child with triangles or fetch an empty one.
+  for (int bit : {40, 41}) {
+    try {
+      ImageView(corrupt([&](auto& b) { b[header(b)->node_offset + bit / 8] ^= uint8_t(1u << (bit % 8)); }));
+      FAIL() << "a flipped empty-child mark (bit " << bit << ") was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("empty-child marks"), std::string::npos) << e.what();
+    }
+  }
   // An fp16 image read as if it were fp32 (wrong format in the header).
   EXPECT_THROW(ImageView(corrupt([&](auto& b) {
                  header(b)->format_e = 8;

@@ -116,6 +116,36 @@ TEST(Traversal, StackLimitEndsTheRayAtTheOverflowingPush) {
   RecordProperty("hit_before_overflow", hit_before);
 }
 
+// An empty leaf is marked in its parent and never fetched (the root
+// excepted): the path holds every node the walk reached, the counters count
+// the fetched ones, and the marked leaves are the rest of the path.
+TEST(Traversal, MarkedEmptyLeavesAreOnThePathButNotFetched) {
+  Prepared p(GenerateScene("balls", 3000));
+  const ImageView image = p.view();
+  const std::vector<Ray> rays = testing::CameraRays(p.scene, 32);
+  fp::ScopedFtzDaz ftz;
+  const fp::NativeF32Arith a;
+  uint64_t skipped = 0, fetched = 0;
+  for (const Ray& ray : rays) {
+    RayCounters c;
+    std::vector<uint32_t> path;
+    TraceRay(a, image, ray, IsectMethod::kWatertight, Query::kClosest, &c, &path);
+    uint32_t empty = 0, leaves = 0;
+    for (uint32_t n : path) {
+      const img::Node node = image.node(n);
+      if (node.IsLeaf() && node.Count() == 0 && n != 0) ++empty;
+      else leaves += node.IsLeaf();
+    }
+    ASSERT_EQ(c.empty_skipped, empty);
+    ASSERT_EQ(c.nodes + c.empty_skipped, path.size());
+    ASSERT_EQ(c.leaves, leaves);
+    skipped += c.empty_skipped;
+    fetched += c.nodes;
+  }
+  // balls cuts a lot of empty space off: most leaves a ray reaches are empty.
+  EXPECT_GT(skipped, fetched / 10);
+}
+
 // The kd-tree's closest hit on such rays is brute force's, but for ties
 // (IsTie: two triangles within a few ulps at a shared vertex or edge). Rays
 // in a plane often pass exactly through shared vertices and edges: on gears'

@@ -22,7 +22,7 @@ TEST(WalkFloor, VisitsTheTracersNodeCount) {
     std::vector<RayCounters> per_ray;
     TraceRays(image, rays, options, &stats, &per_ray);
     std::vector<uint32_t> leaves(per_ray.size());
-    for (size_t i = 0; i < per_ray.size(); ++i) leaves[i] = per_ray[i].leaves;
+    for (size_t i = 0; i < per_ray.size(); ++i) leaves[i] = per_ray[i].leaves + per_ray[i].empty_skipped;
     const bench::WalkFloor floor = bench::MeasureWalkFloor(image, rays, leaves, 1);
     const double tracer_nodes = static_cast<double>(stats.totals.nodes) / static_cast<double>(rays.size());
     // The bare walk has no slack, so a split within a few ulps of a cell's
