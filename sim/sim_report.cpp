@@ -114,6 +114,7 @@ nlohmann::json ReportJson(const ReportInputs& in) {
       {"reference_per_ray",
        {{"nodes", Ratio(nodes, rays)},
         {"leaves", Ratio(in.reference_totals.leaves, rays)},
+        {"empty_skipped", Ratio(in.reference_totals.empty_skipped, rays)},
         {"tri_tests", Ratio(tests, rays)}}},
       {"bound_cycles_per_ray", Ratio(bound_cycles, rays)},
       {"efficiency", Ratio(bound_cycles, cycles)},
@@ -322,8 +323,8 @@ void PrintReport(const nlohmann::json& j, std::FILE* out) {
                d(mem["bytes_per_ray"]), d(mem["bytes_per_cycle_used"]), u(mem["requests"]),
                u(mem["max_outstanding"]));
   const auto& rp = j["reference_per_ray"];
-  std::fprintf(out, "reference/ray  %.2f nodes, %.2f leaves, %.2f triangle tests\n", d(rp["nodes"]),
-               d(rp["leaves"]), d(rp["tri_tests"]));
+  std::fprintf(out, "reference/ray  %.2f nodes, %.2f leaves (and %.2f empty ones, not fetched), %.2f triangle tests\n",
+               d(rp["nodes"]), d(rp["leaves"]), d(rp["empty_skipped"]), d(rp["tri_tests"]));
   std::fprintf(out, "sim speed      %.3f s, %.0f cycles/s, %.0f rays/s%s\n", d(j["sim_seconds"]),
                d(j["sim_cycles_per_second"]), d(j["sim_rays_per_second"]),
                j.value("model_build", "") == "quick" ? " (a quick build, one unit at -O1 without waveforms: KDRT_QUICK_MODELS)" : "");
