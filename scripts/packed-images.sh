@@ -20,6 +20,15 @@ for scene in "${scenes[@]}"; do
   "$kdrt" info "$scene" --json "$tmp/info.json" > /dev/null
   for p in $presets; do
     fmt=${p%%:*}
+    # A format whose image cannot hold the scene (kdrt info says why): a row
+    # that says so, no run.
+    why=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["images"][sys.argv[2]].get("error", ""))' \
+      "$tmp/info.json" "$fmt")
+    if [ -n "$why" ]; then
+      echo "packed-images: $scene $fmt: $why" >&2
+      echo "| $scene | $fmt | no image: ${why#memory image: } | | | | |"
+      continue
+    fi
     echo "packed-images: $scene $fmt ${extra[*]:-}" >&2
     "$kdrt" sim "$scene" --format "$fmt" --res "$res" -q -o "$tmp/a.png" --json "$tmp/a.json" "${extra[@]}" \
       2> "$tmp/err" || { cat "$tmp/err" >&2; exit 1; }
