@@ -135,7 +135,7 @@ struct KdTree {
 };
 
 // Throws InputError on NaN/Inf vertices, invalid options, or a tree that
-// does not fit the memory image's 30-bit indices.
+// does not fit the memory image's indices (28-bit nodes, 30-bit counts).
 KdTree BuildKdTree(const Scene& scene, const BuildOptions& options = {});
 
 // The statistics of a finished tree (everything but degenerate_triangles,
