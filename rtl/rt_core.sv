@@ -13,10 +13,11 @@
 //                                    -> leaf:  rt_list_unit -> LEAF -> EXIT
 //   rt_list_unit -> list cache -> triangle cache -> rt_isect_unit -> closest-hit merge
 //   EXIT (leaf done): finished, or pop the stack -> FETCH (-> EXIT: popped an empty leaf)
+//   DONE -> hit out (t back to world units) -> FREE
+//
 // An inner node marks its children that are empty leaves, and a thread never
 // fetches one: it exits as it would after that leaf (the model's walk counts
 // no node for it).
-//   DONE -> hit out (t back to world units) -> FREE
 //
 // The caches and the memory port are rt_mem_system. The operations and
 // decisions are exactly the model's (sw/trace/traversal.h, docs/dataflow.md),
@@ -282,12 +283,11 @@ module rt_core #(
   rt_leaf_exit #(.E(E), .M(M), .Threads(Threads), .StackDepth(StackDepth), .NodeIdxWidth(NodeIdxWidth)) u_exit (
     .clk_i, .rst_ni, .clear_i(setup_fire), .clear_idx_i(setup_tag),
     .push_i(trav_push), .push_idx_i(trav_tag), .push_node_i(trav_second), .push_t0_i(trav_ts_lo),
-    .push_t1_i(trav_t1), .push_empty_i(trav_second_empty), .push_full_o(stack_full), .req_next_i(exit_next), .sel_valid_o(exit_sel),
-    .sel_idx_o(exit_sel_idx), .exit_valid_o(exit_valid),
+    .push_t1_i(trav_t1), .push_empty_i(trav_second_empty), .push_full_o(stack_full), .req_next_i(exit_next),
+    .sel_valid_o(exit_sel), .sel_idx_o(exit_sel_idx), .exit_valid_o(exit_valid),
     .exit_idx_o(exit_idx), .exit_any_i(any_q[exit_idx]), .exit_hit_i(exit_hit), .exit_best_t_i(exit_best_t),
     .exit_t1_i(t1_q[exit_idx]), .exit_done_o(exit_done), .pop_node_o(pop_node), .pop_empty_o(pop_empty),
-    .pop_t0_o(pop_t0),
-    .pop_t1_o(pop_t1)
+    .pop_t0_o(pop_t0), .pop_t1_o(pop_t1)
   );
 
   // ------------------------------------------------------------ leaf lists, triangles, intersection
@@ -421,9 +421,9 @@ module rt_core #(
     .fetch_idx_i(fetch_idx), .fetch2_i(fetch2_fire), .fetch2_idx_i(fetch2_idx), .node_i(node_fire),
     .node_idx_i(node_tag), .node_leaf_i(node_is_leaf),
     .node_job_i(job_push), .node_tests_i(CountW'(node_count)), .trav_i(trav_valid), .trav_idx_i(trav_tag),
-    .trav_overflow_i(trav_overflow), .trav_exit_i(trav_exit), .issue_i(tri_fire), .issue_idx_i(tri_tag), .retire_i(isect_valid),
-    .retire_idx_i(isect_tag), .exit_i(exit_valid), .exit_idx_i(exit_idx), .exit_done_i(exit_done),
-    .exit_again_i(pop_empty),
+    .trav_overflow_i(trav_overflow), .trav_exit_i(trav_exit), .issue_i(tri_fire), .issue_idx_i(tri_tag),
+    .retire_i(isect_valid), .retire_idx_i(isect_tag), .exit_i(exit_valid), .exit_idx_i(exit_idx),
+    .exit_done_i(exit_done), .exit_again_i(pop_empty),
     .out_i(out_fire), .out_idx_i(out_idx)
   );
 

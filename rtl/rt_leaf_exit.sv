@@ -21,8 +21,8 @@
 // the stack is popped only when the thread goes on (exit_done_o low), to the popped
 // node with [pop_t0_o, pop_t1_o]; pop_empty_o: the popped node is an empty
 // leaf (pushed with its parent's mark), which the thread does not fetch: it
-// exits again, with the popped interval's end. Stacks are cleared for a new ray (clear_i)
-// and pushed by traversal steps (push_i; push_full_o: the push is dropped,
+// exits again, with the popped interval's end. Stacks are cleared for a new
+// ray (clear_i) and pushed by traversal steps (push_i; push_full_o: the push is dropped,
 // the ray overflows), with rt_thread_stack's rules when events collide.
 `default_nettype none
 // Unused outputs of fp_cmp are left open on purpose.

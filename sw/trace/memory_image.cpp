@@ -172,7 +172,8 @@ std::vector<uint8_t> BuildMemoryImage(const Scene& scene, const KdTree& tree, co
       SetBits(beat, at, w, StoredBits(layout, n.Split()));
       SetBits(beat, at + w, 2, static_cast<uint64_t>(n.Axis()));
       SetBits(beat, at + w + 2, layout.ChildBits(), layout.IndexOfPosition(n.AboveChild()));
-      const uint64_t marks = uint64_t{empty_leaf(static_cast<uint32_t>(p) + 1)} | uint64_t{empty_leaf(n.AboveChild())} << 1;
+      const uint64_t marks =
+          uint64_t{empty_leaf(static_cast<uint32_t>(p) + 1)} | uint64_t{empty_leaf(n.AboveChild())} << 1;
       SetBits(beat, at + w + 2 + layout.ChildBits(), 2, marks);
     }
   }
