@@ -63,8 +63,9 @@ module rt_cache #(
   // req2_addr_i are unused): the miss registers keep no address
   parameter bit KeyIsLine = 1'b0,
   // the words of one SRAM macro: the line array and the merged requests are
-  // banked so that their access time is a small macro's (rt_ram_banked)
-  parameter int unsigned BankWords = 128,
+  // banked so that their access time is a small macro's (rt_ram_banked;
+  // up to 256 words a macro's access barely grows, docs/physical.md)
+  parameter int unsigned BankWords = 256,
   localparam int unsigned LineBits = LineBeats * 128,
   localparam int unsigned IdxW = (Lines > 1) ? $clog2(Lines) : 1,
   localparam int unsigned Sets = Lines / Ways,
@@ -223,24 +224,38 @@ module rt_cache #(
   // completes the line, a request joining it) is forwarded.
   // The registers' valid and received-beat vectors take exactly this next
   // state, so done_idx_q is always the lowest completed register.
-  logic [Mshrs-1:0] alloc_oh, resp_oh, free_oh, valid_next, all_got_next, done_next;
+  //
+  // A register taken this cycle is not completed in the next (its beats are
+  // still to come, and no beat answers a register that has not asked), so
+  // the completed registers of the next cycle do not depend on this cycle's
+  // lookup: they are the valid registers with every beat in (`done_stay`),
+  // less the completed register if this cycle's answer frees it. Both
+  // candidates are encoded in parallel and the answer only chooses between
+  // them, so the path from the requester's ready (resp_ready_i) through
+  // `deliver` to the memories' read address is a multiplexer, not an
+  // encoder over every register.
+  logic [Mshrs-1:0] alloc_oh, resp_oh, valid_next, got_all_now, done_stay, done_oh_q;
   logic [LineBeats*Mshrs-1:0] got_next;
-  logic             unused_done_next_valid;
+  logic             freeing, unused_keep_valid, unused_free_valid;
+  logic [MshrW-1:0] done_keep_idx, done_free_idx;
   always_comb begin
     alloc_oh = (m_take && !m_join) ? Mshrs'(1) << free_idx : '0;
     resp_oh = mem_resp_valid_i ? Mshrs'(1) << resp_mshr : '0;
-    free_oh = (deliver && (done_last || done_cnt == '0)) ? Mshrs'(1) << done_idx : '0;
-    valid_next = (mshr_valid_q | alloc_oh) & ~free_oh;
-    all_got_next = '1;
+    got_all_now = '1;
     for (int unsigned b = 0; b < LineBeats; b++) begin
       got_next[Mshrs*b +: Mshrs] = (mshr_got_q[Mshrs*b +: Mshrs] & ~alloc_oh) |
                                    (resp_beat == BeatW'(b) ? resp_oh : '0);
-      all_got_next &= got_next[Mshrs*b +: Mshrs];
+      got_all_now &= mshr_got_q[Mshrs*b +: Mshrs] | (resp_beat == BeatW'(b) ? resp_oh : '0);
     end
   end
-  assign done_next = valid_next & all_got_next;
-  rt_prio_enc #(.N(Mshrs)) u_done_next_enc (.req_i(done_next), .valid_o(unused_done_next_valid),
-                                            .idx_o(done_idx_next));
+  assign freeing = deliver && (done_last || done_cnt == '0);
+  assign valid_next = (mshr_valid_q | alloc_oh) & ~(freeing ? done_oh_q : '0);
+  assign done_stay = mshr_valid_q & got_all_now;
+  rt_prio_enc #(.N(Mshrs)) u_done_keep_enc (.req_i(done_stay), .valid_o(unused_keep_valid),
+                                            .idx_o(done_keep_idx));
+  rt_prio_enc #(.N(Mshrs)) u_done_free_enc (.req_i(done_stay & ~done_oh_q), .valid_o(unused_free_valid),
+                                            .idx_o(done_free_idx));
+  assign done_idx_next = freeing ? done_free_idx : done_keep_idx;
 
   for (genvar b = 0; b < LineBeats; b++) begin : g_beat_ram
     logic         we, fwd_q;
@@ -274,11 +289,22 @@ module rt_cache #(
   logic [TgtIdxW-1:0]  tgt_waddr, tgt_raddr;
   logic                tgt_fwd_q;
   logic [TagWidth-1:0] tgt_rdata, tgt_fwd_data_q;
-  always_comb begin
-    out_next_at_done = mshr_out_q[done_idx_next];
-    if (m_take && !m_join && free_idx == done_idx_next) out_next_at_done = '0;
-    if (deliver && done_idx == done_idx_next) out_next_at_done = done_out + 1'b1;
-  end
+  // The slot each candidate register answers next: its count of answers,
+  // one more if it is the one answered now and stays (the register freed
+  // now is never the next one). The request written now goes to the next
+  // answer's slot only when it joins the next completed register (a
+  // register taken now is not completed next): the test is made for both
+  // candidates and chosen by `freeing`, as the register itself is. A
+  // register that joins is never the completed one (`joinable`), so the
+  // answer's increment does not enter the join's test.
+  logic [TgtW-1:0] out_keep, out_free;
+  logic            keep_is_done, fwd_keep, fwd_free;
+  assign keep_is_done = done_keep_idx == done_idx;
+  assign out_keep = (deliver && keep_is_done) ? done_out + 1'b1 : mshr_out_q[done_keep_idx];
+  assign out_free = mshr_out_q[done_free_idx];
+  assign out_next_at_done = freeing ? out_free : out_keep;
+  assign fwd_keep = m_join_idx == done_keep_idx && m_join_cnt == mshr_out_q[done_keep_idx];
+  assign fwd_free = m_join_idx == done_free_idx && m_join_cnt == out_free;
   assign tgt_waddr = TgtIdxW'(32'(tgt_wr_mshr) * Targets + 32'(tgt_wr_slot));
   assign tgt_raddr = TgtIdxW'(32'(done_idx_next) * Targets + 32'(out_next_at_done));
   rt_ram_banked #(.Words(TgtWords), .Width(TagWidth), .BankWords(BankWords)) u_tgt_ram (
@@ -286,14 +312,39 @@ module rt_cache #(
     .rdata_o(tgt_rdata)
   );
   always_ff @(posedge clk_i) begin
-    tgt_fwd_q <= m_take && tgt_waddr == tgt_raddr;
+    tgt_fwd_q <= m_take && m_join && (freeing ? fwd_free : fwd_keep);
     tgt_fwd_data_q <= m_tag;
   end
+`ifndef SYNTHESIS
+  // What the restructured paths rely on: a register taken now is not the
+  // next completed one, no beat answers a free register, a join never
+  // targets the completed register, and the forward agrees with the
+  // addresses whenever a register is completed next (else nothing reads
+  // them).
+  always_ff @(posedge clk_i) begin
+    if (rst_ni) begin
+      assert (!(m_take && !m_join && free_idx == done_idx_next && done_stay[free_idx]))
+        else $error("rt_cache: a register taken now is the next completed one");
+      assert (!(mem_resp_valid_i && !mshr_valid_q[resp_mshr]))
+        else $error("rt_cache: a memory beat for a free miss register");
+      assert (!(m_take && m_join && done_valid && m_join_idx == done_idx))
+        else $error("rt_cache: a request joins the completed register");
+      assert (!(|(done_stay & ~(freeing ? done_oh_q : '0))) ||
+              (m_take && m_join && (freeing ? fwd_free : fwd_keep)) == (m_take && tgt_waddr == tgt_raddr))
+        else $error("rt_cache: the merged requests' forward disagrees with the addresses");
+    end
+  end
+`endif
   assign done_tag = tgt_fwd_q ? tgt_fwd_data_q : tgt_rdata;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) done_idx_q <= '0;
-    else done_idx_q <= done_idx_next;
+    if (!rst_ni) begin
+      done_idx_q <= '0;
+      done_oh_q <= Mshrs'(1);
+    end else begin
+      done_idx_q <= done_idx_next;
+      done_oh_q <= Mshrs'(1) << done_idx_next;
+    end
   end
 `ifndef SYNTHESIS
   // The memories were read at the completed register: the lowest of `done`.

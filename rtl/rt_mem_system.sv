@@ -171,9 +171,14 @@ module rt_mem_system #(
     assign list_req_tag_full = {list_req_tag_i, list_req_addr_i[ListOffW-1:0], list_req_count_i};
     assign {list_resp_tag, list_resp_off, list_resp_count} = list_resp_tag_full;
     // The line register: the entries of one response, handed on one a cycle.
+    // The entry's place is one-hot (a bit per entry, rotated as the entries
+    // are handed on): the entry is an AND-OR of the line's words, so the
+    // triangle cache's lookup, which the entry starts, is not behind a
+    // select decode.
+    localparam int unsigned Entries = 1 << EntryIdxW;
     logic                         em_valid_q;
     logic [ListLineBeats*128-1:0] em_line_q;
-    logic [EntryIdxW-1:0]         em_idx_q;
+    logic [Entries-1:0]           em_sel_q;
     logic [ListCountW-1:0]        em_left_q;
     logic [TagWidth-1:0]          em_tag_q;
     logic                         em_last;
@@ -191,17 +196,24 @@ module rt_mem_system #(
     always_ff @(posedge clk_i) begin
       if (list_resp_valid && list_resp_ready) begin
         em_line_q <= list_line;
-        em_idx_q <= list_resp_off[ListOffW-1:EntryShift];
+        em_sel_q <= Entries'(1) << list_resp_off[ListOffW-1:EntryShift];
         em_left_q <= list_resp_count;
         em_tag_q <= list_resp_tag;
       end else if (em_valid_q && tri_req_ready) begin
-        em_idx_q <= em_idx_q + 1'b1;
+        em_sel_q <= {em_sel_q[Entries-2:0], em_sel_q[Entries-1]};
         em_left_q <= em_left_q - 1'b1;
       end
     end
     assign tri_req_valid = em_valid_q;
     assign entry_tag = em_tag_q;
-    assign entry_tri = TriIdxWidth'(em_line_q[8 * kdrt_pkg::ListEntryBytes * em_idx_q +: 32]);
+    logic [31:0] entry;
+    always_comb begin
+      entry = '0;
+      for (int unsigned e = 0; e < Entries; e++) begin
+        entry |= em_line_q[8 * kdrt_pkg::ListEntryBytes * e +: 32] & {32{em_sel_q[e]}};
+      end
+      entry_tri = TriIdxWidth'(entry);
+    end
     // Only the line register's tag bits are used.
     /* verilator lint_off UNUSEDSIGNAL */
     logic unused_stream;

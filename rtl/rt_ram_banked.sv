@@ -17,7 +17,7 @@
 module rt_ram_banked #(
   parameter int unsigned Words = 4,
   parameter int unsigned Width = 8,
-  parameter int unsigned BankWords = 128,
+  parameter int unsigned BankWords = 256,
   localparam int unsigned AddrW = (Words > 1) ? $clog2(Words) : 1
 ) (
   input  logic             clk_i,

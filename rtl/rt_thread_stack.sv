@@ -28,8 +28,9 @@ module rt_thread_stack #(
   parameter int unsigned StackDepth = 32,
   parameter int unsigned Width = 8,
   // the words of one SRAM macro (a power of two): the memory is banked so
-  // that its access time is a small macro's (docs/physical.md)
-  parameter int unsigned BankWords = 128,
+  // that its access time is a small macro's (up to 256 words a macro's
+  // access barely grows, docs/physical.md)
+  parameter int unsigned BankWords = 256,
   localparam int unsigned ThW = (Threads > 1) ? $clog2(Threads) : 1,
   localparam int unsigned Words = Threads * StackDepth,
   localparam int unsigned AddrW = (Words > 1) ? $clog2(Words) : 1

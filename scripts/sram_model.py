@@ -12,12 +12,13 @@ import os
 import sys
 
 COEFFS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "sram_model.txt")
-KEYS = ("area_fixed_um2", "area_per_bit_um2", "access_base_ns", "access_per_log2_word_ns")
+KEYS = ("area_fixed_um2", "area_per_bit_um2", "access_beyond_per_log2_word_ns")
+POINT = "access_ns_at_words_"
 
 
 def load(path=COEFFS):
     """The coefficients of PATH: {key: value}; exits with file:line on a bad line."""
-    coeffs = {}
+    coeffs = {"access": []}
     with open(path) as f:
         for n, line in enumerate(f, 1):
             line = line.split("#", 1)[0].strip()
@@ -30,13 +31,37 @@ def load(path=COEFFS):
                 coeffs["model"] = parts[1]
                 continue
             try:
-                coeffs[parts[0]] = float(parts[1])
+                value = float(parts[1])
             except ValueError:
                 sys.exit(f"{path}:{n}: {parts[0]}: '{parts[1]}' is not a number")
-    missing = [k for k in KEYS if k not in coeffs]
+            if parts[0].startswith(POINT):
+                words = parts[0][len(POINT):]
+                if not words.isdigit() or int(words) < 1:
+                    sys.exit(f"{path}:{n}: {parts[0]}: '{words}' is not a number of words")
+                if coeffs["access"] and (int(words) <= coeffs["access"][-1][0] or value < coeffs["access"][-1][1]):
+                    sys.exit(f"{path}:{n}: {parts[0]}: the points must grow in words and not fall in time")
+                coeffs["access"].append((int(words), value))
+            else:
+                coeffs[parts[0]] = value
+    missing = [k for k in KEYS if k not in coeffs] + ([POINT + "W"] if not coeffs["access"] else [])
     if missing:
         sys.exit(f"{path}: missing {', '.join(missing)}")
     return coeffs
+
+
+def access_ns(words, coeffs):
+    """The access time of a macro of WORDS words: piecewise linear in
+    log2(words) through the points, flat below the first, the beyond slope
+    after the last."""
+    pts = coeffs["access"]
+    x = math.log2(words)
+    if words <= pts[0][0]:
+        return pts[0][1]
+    for (w0, a0), (w1, a1) in zip(pts, pts[1:]):
+        if words <= w1:
+            x0, x1 = math.log2(w0), math.log2(w1)
+            return a0 + (a1 - a0) * (x - x0) / (x1 - x0)
+    return pts[-1][1] + coeffs["access_beyond_per_log2_word_ns"] * (x - math.log2(pts[-1][0]))
 
 
 def macro(words, width, coeffs):
@@ -44,7 +69,7 @@ def macro(words, width, coeffs):
     if words < 1 or width < 1:
         raise ValueError(f"an SRAM macro of {words} x {width} bits")
     area = coeffs["area_fixed_um2"] + coeffs["area_per_bit_um2"] * words * width
-    access = coeffs["access_base_ns"] + coeffs["access_per_log2_word_ns"] * math.log2(words)
+    access = access_ns(words, coeffs)
     return {"words": words, "width": width, "area_um2": round(area),
             "access_ns": round(access, 3), "source": "model"}
 

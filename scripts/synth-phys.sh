@@ -35,7 +35,7 @@
 #                e.g. rt_core's thread table without the units it feeds
 #   --input-delay PORT=NS  the input port PORT (all its bits) arrives NS
 #                after the clock (repeatable), e.g. with --glue an SRAM
-#                instance's data output: u_ray_ram.rdata_o=8.48
+#                instance's data output: u_ray_ram.rdata_o=7.424
 #   NAME=VALUE   parameters of UNIT, e.g. E=8 M=23 (fp32), N=32
 #   YOSYS=path, STA=path, LIBERTY=path: other tools or another Liberty file.
 # On failure: exit status 1, one line saying what failed on stderr (then the
@@ -76,7 +76,7 @@ fi
 period_ps=$(awk -v p="$period" 'BEGIN { printf "%d", p * 1000 + 0.5 }')
 for d in ${delays[@]+"${delays[@]}"}; do
   if ! [[ "$d" =~ ^[A-Za-z_][A-Za-z0-9_.]*=[0-9]+(\.[0-9]+)?$ ]]; then
-    bad_usage "--input-delay $d: expected PORT=NS, e.g. u_ray_ram.rdata_o=8.48"
+    bad_usage "--input-delay $d: expected PORT=NS, e.g. u_ray_ram.rdata_o=7.424"
   fi
 done
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
