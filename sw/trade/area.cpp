@@ -178,9 +178,10 @@ std::optional<Numbers> ReadCached(const std::string& path, const UnitKey& key) {
 
 // ---- the estimate ----
 
-// cells, flip-flops and depth of one unit as a + b*W + c*p^2 with W = 1+E+M
-// the word width and p = M+1 the significand width: registers, delay lines,
-// muxes and stacks grow with W, the multipliers with p^2 (adders and shifters
+// cells, flip-flops, depth and SRAM bits of one unit as a + b*W + c*p^2 with
+// W = 1+E+M the word width and p = M+1 the significand width: registers,
+// delay lines, muxes and memories (the stacks' intervals, the hit records'
+// u and v) grow with W, the multipliers with p^2 (adders and shifters
 // with p are absorbed by the other two terms). Checked against synthesis when
 // written: max residual 2.7 % on the presets (a quadratic in p alone: 7.1 %);
 // e6m12, between the presets, within 3 % per unit and 0.0 % on the core's
@@ -189,18 +190,19 @@ std::optional<Numbers> ReadCached(const std::string& path, const UnitKey& key) {
 std::array<double, 3> Basis(int e, int m) { return {1.0, 1.0 + e + m, (m + 1.0) * (m + 1.0)}; }
 
 struct Fit {
-  std::array<double, 3> coef[3] = {};  // [cells, flip-flops, depth][a, b, c]
+  std::array<double, 3> coef[4] = {};  // [cells, flip-flops, depth, SRAM bits][a, b, c]
   double residual = 0;                 // max relative residual on the fitted rows
   int points = 0;
   int w_min = 0, w_max = 0, p_min = 0, p_max = 0;  // the fitted rows' range
 
   Numbers At(int e, int m) const {
     const std::array<double, 3> x = Basis(e, m);
-    double v[3];
-    for (int q = 0; q < 3; ++q) {
+    double v[4];
+    for (int q = 0; q < 4; ++q) {
       v[q] = std::max(0.0, std::round(coef[q][0] * x[0] + coef[q][1] * x[1] + coef[q][2] * x[2]));
     }
-    return {static_cast<int64_t>(v[0]), static_cast<int64_t>(v[1]), static_cast<int>(v[2])};
+    return {static_cast<int64_t>(v[0]), static_cast<int64_t>(v[1]), static_cast<int>(v[2]),
+            static_cast<int64_t>(v[3])};
   }
 };
 
@@ -258,9 +260,11 @@ Fit FitUnit(const std::vector<TableRow>& table, const std::string& unit) {
     fit.p_min = std::min(fit.p_min, r->key.m + 1);
     fit.p_max = std::max(fit.p_max, r->key.m + 1);
   }
-  for (int q = 0; q < 3; ++q) {
+  for (int q = 0; q < 4; ++q) {
     std::vector<double> y;
-    for (const TableRow* r : rows) y.push_back(q == 0 ? r->n.cells : q == 1 ? r->n.flip_flops : r->n.depth);
+    for (const TableRow* r : rows) {
+      y.push_back(q == 0 ? r->n.cells : q == 1 ? r->n.flip_flops : q == 2 ? r->n.depth : r->n.sram_bits);
+    }
     const auto coef = LeastSquares(x, y);
     if (!coef) throw no_fit();
     fit.coef[q] = *coef;
@@ -270,7 +274,8 @@ Fit FitUnit(const std::vector<TableRow>& table, const std::string& unit) {
   for (const TableRow* r : rows) {
     const Numbers e = fit.At(r->key.e, r->key.m);
     fit.residual = std::max({fit.residual, RelativeError(e.cells, r->n.cells),
-                             RelativeError(e.flip_flops, r->n.flip_flops), RelativeError(e.depth, r->n.depth)});
+                             RelativeError(e.flip_flops, r->n.flip_flops), RelativeError(e.depth, r->n.depth),
+                             RelativeError(e.sram_bits, r->n.sram_bits)});
   }
   return fit;
 }
@@ -518,7 +523,10 @@ Area Compute(const fp::Format& f, const AreaOptions& options, bool force_estimat
 
 }  // namespace
 
-bool KeepsSram(const std::string& unit) { return unit == "rt_mem_system"; }
+bool KeepsSram(const std::string& unit) {
+  return unit == "rt_mem_system" || unit == "rt_leaf_exit" || unit == "rt_hit_merge" || unit == "rt_list_unit" ||
+         unit == "rt_thread_stack";
+}
 
 std::string RtlHash(const std::string& source_dir) {
   const fs::path rtl = fs::path(source_dir) / "rtl";

@@ -28,7 +28,7 @@ struct UnitArea {
   int64_t cells = 0;
   int64_t flip_flops = 0;
   int depth = 0;
-  int64_t sram_bits = 0;  // line arrays kept as SRAM macros, not in cells (rt_mem_system)
+  int64_t sram_bits = 0;  // memories kept as SRAM macros, not in cells (KeepsSram)
   std::string source;   // "cache", "yosys" or "estimate"
   double residual = 0;  // estimate only: the fit's max relative residual on the presets
 };
@@ -37,8 +37,8 @@ struct Area {
   int64_t cells = 0;       // summed over the units
   int64_t flip_flops = 0;  // summed over the units
   int depth = 0;           // max over the units
-  // The caches' line arrays, SRAM macros outside the cells: their area is
-  // not a Yosys figure (docs/synth-table.md).
+  // The memories (caches' lines, stacks, queues), SRAM macros outside the
+  // cells: their area is not a Yosys figure (docs/synth-table.md).
   int64_t sram_bits = 0;
   // The weakest source of any unit: "estimate" if one was estimated, else
   // "yosys" if one was synthesized in this run, else "cache".
@@ -85,7 +85,8 @@ Area CoreArea(const fp::Format& f, const AreaOptions& options);
 // model, and for checking it against the presets.
 Area EstimateCoreArea(const fp::Format& f, const AreaOptions& options);
 
-// The units whose caches' line arrays are synthesized as SRAM macros
+// The units whose memories (rt_ram_1r1w: the caches' lines, the stacks, the
+// hit records' u and v, the leaf-job queue) are synthesized as SRAM macros
 // (synth-unit.sh --sram): their cells are the logic around the arrays, and
 // the arrays' bits are counted apart. scripts/synth.sh names the same units
 // in SRAM_UNITS for the table (AreaTest checks that the two agree).
