@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 namespace kdrt::trade {
 namespace {
@@ -141,13 +142,16 @@ void PrintTable(const TradeResult& t, FILE* out) {
   };
   row(t.truth, "fp64");
   for (const FormatResult& r : t.formats) row(r, r.format.Name().c_str());
+  std::string sram;
   for (const FormatResult& r : t.formats) {
     if (r.area && r.area->sram_bits > 0) {
-      std::fprintf(out, "SRAM           %lld bits of cache lines beside the cells (the same in every format: SRAM "
-                        "macros, whose area is not a Yosys figure)\n",
-                   static_cast<long long>(r.area->sram_bits));
-      break;
+      sram += " " + r.format.Name() + " " + std::to_string(static_cast<long long>(r.area->sram_bits));
     }
+  }
+  if (!sram.empty()) {
+    std::fprintf(out, "SRAM          %s bits of memories beside the cells (caches' lines, stacks, queues: SRAM "
+                      "macros, whose area is not a Yosys figure)\n",
+                 sram.c_str());
   }
   bool physical = false;
   for (const FormatResult& r : t.formats) physical |= !r.physical.is_null();
