@@ -45,7 +45,7 @@ module rt_core #(
   parameter int unsigned AddrWidth /*verilator public*/ = 28,
   parameter int unsigned NodeCacheLines /*verilator public*/ = 512,
   parameter int unsigned ListCacheLines /*verilator public*/ = 64,
-  parameter int unsigned TriCacheLines /*verilator public*/ = 128,
+  parameter int unsigned TriCacheLines /*verilator public*/ = 256,
   parameter int unsigned NodeLineBeats = 2,
   parameter int unsigned ListLineBeats = 2,
   parameter int unsigned RayIdWidth = 32,

@@ -40,8 +40,8 @@ TEST(CoreParams, TableDefaultsAreTheRtlDefaults) {
 
 TEST(CoreParams, KeyNamesEveryParameter) {
   CoreConfig c = DefaultConfig(fp::kFp32);
-  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.64.128-r128-g4-w4-l1-f16");
-  EXPECT_EQ(DefaultConfig(fp::kFp16).Key(), "e5m10v5.10p5.10-t128-s32-n24-i24-a28-c512.64.128-r128-g4-w4-l1-f16");
+  EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.64.256-r128-g4-w4-l1-f16");
+  EXPECT_EQ(DefaultConfig(fp::kFp16).Key(), "e5m10v5.10p5.10-t128-s32-n24-i24-a28-c512.64.256-r128-g4-w4-l1-f16");
   c[kTriCacheLines] = 1024;
   c[kListCacheLines] = 256;
   EXPECT_EQ(c.Key(), "e8m23v8.23p8.23-t128-s32-n24-i24-a28-c512.256.1024-r128-g4-w4-l1-f16");

@@ -1013,7 +1013,7 @@ TEST_F(SimCli, ModelChoiceFollowsTheScene) {
   const RunResult own = RunKdrt("sim gen:room:300 --node-cache-lines 128 --which-model");
   ASSERT_EQ(own.exit_code, 0) << own.output;
   EXPECT_NE(own.output.find("scene-sized"), std::string::npos) << own.output;
-  EXPECT_NE(own.output.find("c128.64.128"), std::string::npos) << own.output;
+  EXPECT_NE(own.output.find("c128.64.256"), std::string::npos) << own.output;
 }
 
 TEST_F(SimCli, TraceWritesAnFstWaveform) {
