@@ -249,6 +249,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--isect-cost", build.isect_cost, "SAH cost of a triangle test (kdrt info --help)")
       ->capture_default_str();
+  app.add_option("--max-depth", build.max_depth, "Maximum kd-tree depth (-1: round(8 + 1.3 log2 N))")
+      ->capture_default_str();
   app.add_option("--trav-cost", build.traversal_cost, "SAH cost of a traversal step")->capture_default_str();
   app.add_option("--empty-bonus", build.empty_bonus, "SAH bonus for empty children")->capture_default_str();
   app.add_option("--scenes", scenes,
@@ -260,6 +262,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   app.add_option("--json", json_path, "Also write the table as JSON");
+  LoadOptions tessellation;
+  app.add_option("--cone-aspect", tessellation.cone_aspect,
+                 "gen:hoops' cylinders in bands of cells at most A times longer than wide (kdrt render --help)")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   const bool cap_gears = scenes == default_scenes && build.min_split_gain < kGearsFullGain;
 
@@ -304,7 +310,7 @@ int main(int argc, char** argv) {
               "floor", "agree");
   std::printf("%s\n", std::string(139, '-').c_str());
   for (const auto& [name, size] : runs) {
-    const Scene scene = GenerateScene(name, size);
+    const Scene scene = GenerateScene(name, size, tessellation);
     const FramedImage framed = BuildFramedImage(scene, build);
     const KdTree& tree = framed.tree;
     const std::vector<uint8_t>& bytes = framed.bytes;

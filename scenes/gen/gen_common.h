@@ -15,7 +15,7 @@ Scene GenerateTetra(int size);
 Scene GenerateTree(int size);
 Scene GenerateGears(int size);
 Scene GenerateStrips(int size);
-Scene GenerateHoops(int size);
+Scene GenerateHoops(int size, const LoadOptions& tessellation);
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kDefaultResolution = 512;

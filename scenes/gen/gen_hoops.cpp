@@ -10,16 +10,18 @@
 //
 // The primitives are tessellated exactly as the NFF loader tessellates
 // `c` and `s` (AddCone, AddSphere with S segments; the loader's default is
-// 16): each cylinder is one band of S quads from end to end, slivers about
-// 130 times longer than wide at S = 16. Their boxes span cells they
-// barely touch, the case that makes kd-tree leaves large
-// (docs/kdtree.md, "Long thin cylinders").
+// 16), with the loader's cone_aspect: by default each cylinder is one band
+// of S quads from end to end, slivers about 130 times longer than wide at
+// S = 16. Their boxes span cells they barely touch, the case that makes
+// kd-tree leaves large (docs/kdtree.md, "Long thin cylinders"); with
+// cone_aspect A the cylinders are cut into bands of cells at most A times
+// longer than wide.
 //
 // Size mapping: the most layers D whose D(D+1)(2D+1)/6 clusters of 30
-// cylinders and 30 spheres at S = 16 (7680 triangles a cluster) fit in
-// `size` (at least one layer), then the largest S (3..64) that keeps the
-// total within it. Sizes below one cluster at S = 3 (362 triangles) get a
-// single cluster of fewer hoops.
+// cylinders and 30 spheres at S = 16 and one band (7680 triangles a
+// cluster) fit in `size` (at least one layer), then the largest S (3..64)
+// that keeps the total within it with the cylinders' bands. Sizes below one
+// cluster at S = 3 get a single cluster of fewer hoops.
 #include <algorithm>
 #include <cmath>
 
@@ -40,20 +42,31 @@ constexpr double kClusterSpacing = 2.0;
 constexpr double kLayerSpacing = 2.6;
 
 long ClustersFor(long layers) { return layers * (layers + 1) * (2 * layers + 1) / 6; }
-long HoopTriangles(int segments) { return kCorners * (2L * segments + SphereTriangleCount(segments)); }
-long ClusterTriangles(int segments) { return kHoopsPerCluster * HoopTriangles(segments); }
+// Every cylinder has the same length and radius, so the same bands.
+int CylinderBands(int segments, double aspect) {
+  const double edge = 2.0 * std::sin(kPi / kCorners);
+  return ConeBands(glm::dvec3(0.0), edge / kLengthPerRadius, glm::dvec3(edge, 0.0, 0.0), edge / kLengthPerRadius,
+                   segments, aspect);
+}
+long HoopTriangles(int segments, double aspect) {
+  return kCorners * (2L * segments * CylinderBands(segments, aspect) + SphereTriangleCount(segments));
+}
+long ClusterTriangles(int segments, double aspect) { return kHoopsPerCluster * HoopTriangles(segments, aspect); }
 
 }  // namespace
 
-Scene GenerateHoops(int size) {
+Scene GenerateHoops(int size, const LoadOptions& tessellation) {
+  const double aspect = tessellation.cone_aspect;
   long layers = 1;
-  while (ClustersFor(layers + 1) * ClusterTriangles(16) + kBackdropTriangles <= size) ++layers;
+  // The layers as for one band, so that every cone_aspect gives the same
+  // hoops at a size, tessellated into about as many triangles.
+  while (ClustersFor(layers + 1) * ClusterTriangles(16, 0.0) + kBackdropTriangles <= size) ++layers;
   const long clusters = ClustersFor(layers);
   // Below one cluster at S = 3, fewer hoops (at least one).
   int hoops = kHoopsPerCluster;
-  while (hoops > 1 && hoops * HoopTriangles(3) + kBackdropTriangles > size) --hoops;
+  while (hoops > 1 && hoops * HoopTriangles(3, aspect) + kBackdropTriangles > size) --hoops;
   int segments = 3;
-  while (segments < 64 && clusters * hoops * HoopTriangles(segments + 1) + kBackdropTriangles <= size) {
+  while (segments < 64 && clusters * hoops * HoopTriangles(segments + 1, aspect) + kBackdropTriangles <= size) {
     ++segments;
   }
 
@@ -89,7 +102,8 @@ Scene GenerateHoops(int size) {
           b.SetColor(colors[h]);
           for (int c = 0; c < kCorners; ++c) {
             const glm::dvec3 p = centre + corner[h][c];
-            AddCone(b, p, radius, centre + corner[h][(c + 1) % kCorners], radius, segments);
+            AddCone(b, p, radius, centre + corner[h][(c + 1) % kCorners], radius, segments,
+                    CylinderBands(segments, aspect));
             AddSphere(b, p, radius, segments);
           }
         }

@@ -11,6 +11,8 @@ struct GeneratorEntry {
   const char* name;
   const char* description;
   Scene (*make)(int size);
+  // Instead of make, for a generator that tessellates as the NFF loader does.
+  Scene (*make_tessellated)(int size, const LoadOptions& tessellation) = nullptr;
 };
 
 const GeneratorEntry kGenerators[] = {
@@ -27,7 +29,7 @@ const GeneratorEntry kGenerators[] = {
     {"strips", "pentagonal rings of long thin cylinder strips with spheres at the corners (SPD rings), over a floor",
      gen::GenerateStrips},
     {"hoops", "pyramid of clusters of six interlinked pentagonal hoops: NFF cylinders 50x longer than thick, one band of full-length slivers, with corner spheres (SPD rings)",
-     gen::GenerateHoops},
+     nullptr, gen::GenerateHoops},
 };
 
 const GeneratorEntry& Find(const std::string& name) {
@@ -51,13 +53,16 @@ std::vector<std::string> GeneratorNames() {
 
 std::string GeneratorDescription(const std::string& name) { return Find(name).description; }
 
-Scene GenerateScene(const std::string& name, int size) {
+Scene GenerateScene(const std::string& name, int size, const LoadOptions& tessellation) {
   const GeneratorEntry& g = Find(name);
   if (size < 1 || size > kMaxGeneratorSize) {
     throw InputError("generator '" + name + "': size " + std::to_string(size) + " is outside 1.." +
                      std::to_string(kMaxGeneratorSize));
   }
-  Scene scene = g.make(size);
+  if (!(tessellation.cone_aspect == 0.0 || (tessellation.cone_aspect >= 1.0 && tessellation.cone_aspect <= 1e6))) {
+    throw InputError("generator '" + name + "': cone aspect must be 0 (one band) or in 1..1e6");
+  }
+  Scene scene = g.make_tessellated != nullptr ? g.make_tessellated(size, tessellation) : g.make(size);
   scene.source = name + ":" + std::to_string(size);
   return scene;
 }

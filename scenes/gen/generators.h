@@ -21,7 +21,10 @@ std::vector<std::string> GeneratorNames();
 // A one-line description of the named generator; InputError if unknown.
 std::string GeneratorDescription(const std::string& name);
 
-// InputError on an unknown name or size outside 1..kMaxGeneratorSize.
-Scene GenerateScene(const std::string& name, int size);
+// InputError on an unknown name or size outside 1..kMaxGeneratorSize. The
+// generators that tessellate NFF primitives as the loader does (hoops) take
+// the loader's tessellation options (LoadOptions::cone_aspect); the others
+// ignore them.
+Scene GenerateScene(const std::string& name, int size, const LoadOptions& tessellation = {});
 
 }  // namespace kdrt

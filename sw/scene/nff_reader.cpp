@@ -71,6 +71,15 @@ class NffReader {
         Fail("unknown keyword " + QuoteBytes(key));
       }
     }
+    if (sliver_cones_ > 0) {
+      scene_.warnings.push_back(
+          InputError(path_, first_sliver_line_,
+                     std::to_string(sliver_cones_) +
+                         " cones or cylinders tessellated as one band of slivers more than 16 times longer than "
+                         "wide, which kd-tree cells cannot separate (--cone-aspect 4 cuts them into bands; "
+                         "docs/kdtree.md, \"Long thin cylinders\")")
+              .what());
+    }
     return std::move(scene_);
   }
 
@@ -192,6 +201,7 @@ class NffReader {
   }
 
   void ReadCone() {
+    const int cone_line = line_no_;
     ReadConeLine("base");
     glm::vec3 base = ParseVec3(fields_, 0, Pos(), "cone base");
     float rb = ParseFloat(fields_[3], Pos(), "cone base radius");
@@ -204,8 +214,19 @@ class NffReader {
     ra = std::fabs(ra);
     if (base == apex) Fail("cone apex equals its base");
     if (rb == 0.0f && ra == 0.0f) Fail("cone with both radii zero");
-    AddCone(builder_, glm::dvec3(base), rb, glm::dvec3(apex), ra, options_.cone_segments);
+    AddCone(builder_, glm::dvec3(base), rb, glm::dvec3(apex), ra, options_.cone_segments,
+            ConeBands(glm::dvec3(base), rb, glm::dvec3(apex), ra, options_.cone_segments, options_.cone_aspect));
+    if (options_.cone_aspect == 0.0 &&
+        ConeBands(glm::dvec3(base), rb, glm::dvec3(apex), ra, options_.cone_segments, kSliverAspect) > 1) {
+      if (sliver_cones_++ == 0) first_sliver_line_ = cone_line;
+    }
   }
+
+  // One band of cells longer than this makes slivers whose boxes fill the
+  // kd-tree cells they cross (docs/kdtree.md, "Long thin cylinders").
+  static constexpr double kSliverAspect = 16.0;
+  int sliver_cones_ = 0;
+  int first_sliver_line_ = 0;
 
   std::string path_;
   LoadOptions options_;

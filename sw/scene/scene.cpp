@@ -33,6 +33,9 @@ Scene LoadScene(const std::string& path, const LoadOptions& options) {
     throw InputError(path, 0,
                      "sphere and cone segments must be in 3.." + std::to_string(kMaxSegments));
   }
+  if (!(options.cone_aspect == 0.0 || (options.cone_aspect >= 1.0 && options.cone_aspect <= 1e6))) {
+    throw InputError(path, 0, "cone aspect must be 0 (one band) or in 1..1e6");
+  }
   std::string ext = LowerExtension(path);
   Scene scene;
   if (ext == "nff") {

@@ -78,10 +78,13 @@ Scene LoadScene(const std::string& path);
 // docs/scenes.md. A sphere gets sphere_segments slices around its z axis and
 // max(2, sphere_segments / 2) stacks from pole to pole:
 // 2 * segments * (stacks - 1) triangles. A cone gets cone_segments sides, two
-// triangles each (one where a radius is zero), open ends as in NFF.
+// triangles each (one where a radius is zero), open ends as in NFF; with
+// cone_aspect > 0 its sides are cut into bands along the axis so that no cell
+// is more than cone_aspect times longer than wide (ConeBands).
 struct LoadOptions {
   int sphere_segments = 16;  // 3 .. 4096
   int cone_segments = 16;    // 3 .. 4096
+  double cone_aspect = 0;    // 0: one band from end to end; else at least 1
   // Refuse (InputError) data the reader would leave out, instead of a warning
   // in Scene::warnings.
   bool strict = false;

@@ -83,29 +83,50 @@ void AddSphere(SceneBuilder& b, const glm::dvec3& centre, double radius, int seg
 }
 
 void AddCone(SceneBuilder& b, const glm::dvec3& base, double rb, const glm::dvec3& apex, double ra,
-             int segments) {
+             int segments, int bands) {
   glm::dvec3 axis = glm::normalize(apex - base);
   glm::dvec3 u, v;
   MakeFrame(axis, &u, &v);
-  std::vector<glm::vec3> bottom(segments), top(segments);
-  for (int i = 0; i < segments; ++i) {
-    double c, s;
-    UnitCircle(i, segments, &c, &s);
-    glm::dvec3 dir = c * u + s * v;
-    bottom[i] = ToFloat(base + rb * dir);
-    top[i] = ToFloat(apex + ra * dir);
-  }
-  for (int i = 0; i < segments; ++i) {
-    int k = (i + 1) % segments;
-    if (rb == 0.0) {
-      b.AddTriangle(bottom[i], top[k], top[i]);
-    } else if (ra == 0.0) {
-      b.AddTriangle(bottom[i], bottom[k], top[i]);
-    } else {
-      glm::vec3 quad[4] = {bottom[i], bottom[k], top[k], top[i]};
-      b.AddFan(quad, 4);
+  // Ring j (0 = base, bands = apex) is computed once and shared by the bands
+  // on either side of it.
+  std::vector<glm::vec3> ring((bands + 1) * segments);
+  for (int j = 0; j <= bands; ++j) {
+    const double t = static_cast<double>(j) / bands;
+    const glm::dvec3 centre = j == bands ? apex : base + t * (apex - base);
+    const double r = j == bands ? ra : rb + t * (ra - rb);
+    for (int i = 0; i < segments; ++i) {
+      double c, s;
+      UnitCircle(i, segments, &c, &s);
+      ring[j * segments + i] = ToFloat(centre + r * (c * u + s * v));
     }
   }
+  for (int j = 0; j < bands; ++j) {
+    const glm::vec3* bottom = &ring[j * segments];
+    const glm::vec3* top = &ring[(j + 1) * segments];
+    const bool point_below = j == 0 && rb == 0.0;
+    const bool point_above = j == bands - 1 && ra == 0.0;
+    for (int i = 0; i < segments; ++i) {
+      int k = (i + 1) % segments;
+      if (point_below) {
+        b.AddTriangle(bottom[i], top[k], top[i]);
+      } else if (point_above) {
+        b.AddTriangle(bottom[i], bottom[k], top[i]);
+      } else {
+        glm::vec3 quad[4] = {bottom[i], bottom[k], top[k], top[i]};
+        b.AddFan(quad, 4);
+      }
+    }
+  }
+}
+
+int ConeBands(const glm::dvec3& base, double rb, const glm::dvec3& apex, double ra, int segments,
+              double max_aspect) {
+  if (max_aspect <= 0.0) return 1;
+  const double side = 2.0 * std::max(rb, ra) * std::sin(kPi / segments);
+  const double length = glm::length(apex - base);
+  if (!(side > 0.0)) return 1;
+  const double bands = std::ceil(length / (max_aspect * side));
+  return static_cast<int>(std::clamp(bands, 1.0, static_cast<double>(kMaxConeBands)));
 }
 
 void AddTorus(SceneBuilder& b, const glm::dvec3& centre, const glm::dvec3& axis, double major_r,

@@ -18,10 +18,21 @@ void AddSphere(SceneBuilder& b, const glm::dvec3& centre, double radius, int seg
 int SphereTriangleCount(int segments);
 
 // Open cone frustum from `base` (radius rb) to `apex` (radius ra); needs
-// base != apex and rb or ra non-zero. `segments` sides, each two triangles
-// (b_i, b_i+1, a_i+1), (b_i, a_i+1, a_i), or one triangle where a radius is 0.
+// base != apex and rb or ra non-zero. `segments` sides cut into `bands`
+// equal rings along the axis; each cell two triangles (b_i, b_i+1, a_i+1),
+// (b_i, a_i+1, a_i), or one triangle where a radius is 0:
+// 2 * segments * bands triangles, fewer for a cone's point.
 void AddCone(SceneBuilder& b, const glm::dvec3& base, double rb, const glm::dvec3& apex, double ra,
-             int segments);
+             int segments, int bands = 1);
+
+// The bands that keep a cone's cells at most `max_aspect` times longer than
+// the widest ring's side (1 for max_aspect <= 0: one band from end to end),
+// at most kMaxConeBands. A long cell crosses every kd-tree cell along its
+// length, so a tree cannot separate the sides of a thin cylinder of one band
+// (docs/kdtree.md, "Long thin cylinders").
+constexpr int kMaxConeBands = 4096;
+int ConeBands(const glm::dvec3& base, double rb, const glm::dvec3& apex, double ra, int segments,
+              double max_aspect);
 
 // Torus around `axis` (unit), major radius R, tube radius r:
 // 2 * major_segments * minor_segments triangles.

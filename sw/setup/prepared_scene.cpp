@@ -37,13 +37,16 @@ Scene LoadOrGenerate(const SceneSpec& spec) {
       size = static_cast<int>(value);
     }
     try {
-      return GenerateScene(name, size);
+      LoadOptions tessellation;
+      tessellation.cone_aspect = spec.cone_aspect;
+      return GenerateScene(name, size, tessellation);
     } catch (const InputError& e) {
       throw InputError(spec.scene, 0, e.what());  // names the spec the user gave
     }
   }
   LoadOptions lo;
   if (spec.sphere_segments > 0) lo.sphere_segments = spec.sphere_segments;
+  lo.cone_aspect = spec.cone_aspect;
   lo.strict = spec.strict;
   Scene scene = LoadScene(spec.scene, lo);
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "kdrt: warning: %s\n", w.c_str());

@@ -20,6 +20,7 @@ namespace kdrt {
 struct SceneSpec {
   std::string scene;        // a file or gen:NAME:SIZE
   int sphere_segments = 0;  // 0: loader default
+  double cone_aspect = 0;   // LoadOptions::cone_aspect, for NFF files and gen:hoops
   bool strict = false;      // refuse data the loader would leave out (LoadOptions::strict)
   BuildOptions build;
   // A kd-tree split rule (the tree in the memory image, build.method) or a

@@ -24,6 +24,7 @@ struct CompareAccelArgs {
   int threads = 1;
   int repeat = 1;
   int sphere_segments = 0;
+  double cone_aspect = 0;
   double grid_density = StructureOptions{}.grid_density;
   double hgrid_density = StructureOptions{}.hgrid_density;
   bool quiet = false;
@@ -49,6 +50,7 @@ int Run(const CompareAccelArgs& args) {
   o.repeat = args.repeat;
   o.format = fp::ParseFormat(args.format);
   o.spec.sphere_segments = args.sphere_segments;
+  o.spec.cone_aspect = args.cone_aspect;
   o.spec.structure.grid_density = args.grid_density;
   o.spec.structure.hgrid_density = args.hgrid_density;
   o.progress = !args.quiet && isatty(STDERR_FILENO);
@@ -137,6 +139,10 @@ Runner AddCompareAccelCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--sphere-segments", args->sphere_segments,
                   "Tessellation of NFF spheres and cones (0: the loader's default)");
+  cmd->add_option("--cone-aspect", args->cone_aspect,
+                  "NFF cones and cylinders (and gen:hoops'): bands of cells at most A times longer than wide; 0: one "
+                  "band from end to end")
+      ->capture_default_str();
   cmd->add_option("--json", args->json, "Machine-readable results");
   cmd->add_option("--html", args->html, "Write a report page (index.html) to this directory");
   cmd->add_flag("--markdown", args->markdown, "Print the table as markdown (for docs)");

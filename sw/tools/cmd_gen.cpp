@@ -13,6 +13,7 @@ struct GenArgs {
   int size = 1000;
   std::string out;
   bool list = false;
+  double cone_aspect = 0;
 };
 
 int Run(const GenArgs& args) {
@@ -20,7 +21,9 @@ int Run(const GenArgs& args) {
     for (const std::string& n : GeneratorNames()) std::printf("%-8s %s\n", n.c_str(), GeneratorDescription(n).c_str());
     return 0;
   }
-  const Scene scene = GenerateScene(args.name, args.size);
+  LoadOptions tessellation;
+  tessellation.cone_aspect = args.cone_aspect;
+  const Scene scene = GenerateScene(args.name, args.size, tessellation);
   const std::string out = args.out.empty() ? args.name + ".nff" : args.out;
   WriteNff(scene, out);
   std::printf("%s: %zu triangles -> %s\n", scene.source.c_str(), scene.triangles.size(), out.c_str());
@@ -36,6 +39,10 @@ Runner AddGenCommand(CLI::App& app) {
   cmd->add_option("--size", args->size, "Approximate number of triangles")->capture_default_str();
   cmd->add_option("-o,--output", args->out, "NFF file to write (default: NAME.nff)");
   cmd->add_flag("--list", args->list, "List the generators");
+  cmd->add_option("--cone-aspect", args->cone_aspect,
+                  "gen:hoops' cylinders as the NFF loader's --cone-aspect makes them: bands of cells at most A times "
+                  "longer than wide; 0: one band from end to end")
+      ->capture_default_str();
   return [cmd, args]() { return cmd->parsed() ? Run(*args) : -1; };
 }
 

@@ -62,6 +62,11 @@ void AddSceneOptions(CLI::App& cmd, SceneSpec& spec, bool structures) {
       ->capture_default_str();
   cmd.add_option("--sphere-segments", spec.sphere_segments,
                  "Tessellation of NFF spheres and cones (0: the loader's default)");
+  cmd.add_option("--cone-aspect", spec.cone_aspect,
+                 "NFF cones and cylinders (and gen:hoops'): cut into bands along the axis so that no cell is more "
+                 "than A times longer than wide; 0: one band from end to end, long slivers on thin cylinders "
+                 "(docs/kdtree.md, \"Long thin cylinders\")")
+      ->capture_default_str();
 }
 
 void AddShadingOptions(CLI::App& cmd, ShadingArgs& args) {

@@ -1,9 +1,12 @@
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <set>
 #include <tuple>
 #include <vector>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -212,6 +215,51 @@ INSTANTIATE_TEST_SUITE_P(All, EachGenerator, ::testing::ValuesIn(GeneratorNames(
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            return info.param;
                          });
+
+}  // namespace
+}  // namespace kdrt
+
+namespace kdrt {
+namespace {
+
+// gen:hoops with the loader's cone_aspect: the same hoops (the same bounds:
+// the same clusters and layers), about as many triangles (fewer sides per
+// cylinder for its bands), and no cylinder cell longer than A times its
+// side; the other generators ignore the option.
+TEST(Hoops, ConeAspectBandsTheSameHoops) {
+  LoadOptions banded;
+  banded.cone_aspect = 4;
+  for (int size : {5000, 100000}) {
+    const Scene one = GenerateScene("hoops", size), cut = GenerateScene("hoops", size, banded);
+    EXPECT_LE(cut.triangles.size(), static_cast<size_t>(size));
+    EXPECT_GT(cut.triangles.size(), one.triangles.size() * 6 / 10) << size;  // S steps coarsely
+    glm::vec3 lo_a(1e30f), hi_a(-1e30f), lo_b(1e30f), hi_b(-1e30f);
+    for (const Triangle& t : one.triangles) {
+      for (const glm::vec3& p : {t.v0, t.v1, t.v2}) lo_a = glm::min(lo_a, p), hi_a = glm::max(hi_a, p);
+    }
+    float longest_a = 0, longest_b = 0;
+    for (const Triangle& t : cut.triangles) {
+      for (const glm::vec3& p : {t.v0, t.v1, t.v2}) lo_b = glm::min(lo_b, p), hi_b = glm::max(hi_b, p);
+    }
+    // The backdrop (the last two triangles) aside, the longest edge.
+    for (size_t i = 0; i + 2 < one.triangles.size(); ++i) {
+      const Triangle& t = one.triangles[i];
+      longest_a = std::max({longest_a, glm::length(t.v1 - t.v0), glm::length(t.v2 - t.v1)});
+    }
+    for (size_t i = 0; i + 2 < cut.triangles.size(); ++i) {
+      const Triangle& t = cut.triangles[i];
+      longest_b = std::max({longest_b, glm::length(t.v1 - t.v0), glm::length(t.v2 - t.v1)});
+    }
+    EXPECT_NEAR(glm::length(hi_a - hi_b) + glm::length(lo_a - lo_b), 0.0f, 0.05f) << size;
+    EXPECT_GT(longest_a, 1.0f) << size;  // one band: slivers the cylinder's length (1.18)
+    EXPECT_LT(longest_b, 0.3f) << size;   // bands of cells at most 4 sides long
+  }
+  const Scene balls = GenerateScene("balls", 5000, banded);
+  EXPECT_EQ(balls.triangles.size(), GenerateScene("balls", 5000).triangles.size());
+  LoadOptions bad;
+  bad.cone_aspect = -1;
+  EXPECT_THROW(GenerateScene("hoops", 5000, bad), InputError);
+}
 
 }  // namespace
 }  // namespace kdrt

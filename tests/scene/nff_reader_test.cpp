@@ -1,4 +1,9 @@
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <set>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -187,6 +192,75 @@ TEST(NffReader, ConeTessellationFollowsOption) {
   EXPECT_EQ(c.triangles.size(), 12u);  // one triangle per side: apex radius 0
   EXPECT_EQ(LoadScene(frustum).triangles.size(), 32u);  // default 16 sides
   for (const Triangle& t : c.triangles) EXPECT_FALSE(IsDegenerate(t));
+}
+
+// --cone-aspect: a cylinder 50 times longer than its radius (one band of
+// slivers about 130 times longer than wide at 16 sides) is cut into rings
+// along its axis so that no cell is more than A times longer than wide. The
+// rings are computed once, so neighbouring bands share their vertices bit for
+// bit: every edge inside the surface belongs to exactly two triangles, as in
+// one band (no crack for the watertight test).
+TEST(NffReader, ConeAspectCutsLongCylindersIntoBands) {
+  TempDir dir;
+  const std::string file = dir.Write("long.nff", "c\n0 0 0 0.02\n0.3 0.4 1 0.02\n");
+  LoadOptions one, banded;
+  banded.cone_aspect = 4;
+  const Scene a = LoadScene(file, one), b = LoadScene(file, banded);
+  ASSERT_EQ(a.triangles.size(), 32u);
+  // One band of slivers is said (a warning naming the cone's line and the
+  // option), not refused, even with --strict; bands are not.
+  ASSERT_EQ(a.warnings.size(), 1u);
+  EXPECT_NE(a.warnings[0].find("long.nff:1:"), std::string::npos) << a.warnings[0];
+  EXPECT_NE(a.warnings[0].find("--cone-aspect"), std::string::npos) << a.warnings[0];
+  EXPECT_TRUE(b.warnings.empty());
+  LoadOptions strict;
+  strict.strict = true;
+  EXPECT_EQ(LoadScene(file, strict).warnings.size(), 1u);
+  const double length = std::sqrt(0.3 * 0.3 + 0.4 * 0.4 + 1.0);
+  const double side = 2 * 0.02 * std::sin(3.14159265358979323846 / 16);
+  const size_t bands = static_cast<size_t>(std::ceil(length / (4 * side)));
+  ASSERT_EQ(b.triangles.size(), 32u * bands);
+  // Each cell is at most 4 times longer than its widest side (within float rounding).
+  for (const Triangle& t : b.triangles) {
+    const float e[3] = {glm::length(t.v1 - t.v0), glm::length(t.v2 - t.v1), glm::length(t.v0 - t.v2)};
+    const float shortest = std::min({e[0], e[1], e[2]});
+    EXPECT_LE(glm::length(t.v2 - t.v1), 4.0f * float(side) * 1.0001f);
+    EXPECT_GT(shortest, 0.0f);
+    EXPECT_FALSE(IsDegenerate(t));
+  }
+  // Edges: the two end rings' 32 edges once, every other edge twice.
+  std::map<std::pair<std::array<float, 3>, std::array<float, 3>>, int> edges;
+  auto key = [](const glm::vec3& p) { return std::array<float, 3>{p.x, p.y, p.z}; };
+  for (const Triangle& t : b.triangles) {
+    const glm::vec3 v[3] = {t.v0, t.v1, t.v2};
+    for (int i = 0; i < 3; ++i) {
+      auto p = key(v[i]), q = key(v[(i + 1) % 3]);
+      if (q < p) std::swap(p, q);
+      ++edges[{p, q}];
+    }
+  }
+  int once = 0;
+  for (const auto& [edge, n] : edges) {
+    EXPECT_LE(n, 2);
+    once += n == 1;
+  }
+  EXPECT_EQ(once, 32);
+  // The end rings are the one-band cylinder's: the same float vertices.
+  std::set<std::array<float, 3>> ends_a, ends_b;
+  for (const Triangle& t : a.triangles) {
+    for (const glm::vec3& p : {t.v0, t.v1, t.v2}) ends_a.insert(key(p));
+  }
+  for (const Triangle& t : b.triangles) {
+    for (const glm::vec3& p : {t.v0, t.v1, t.v2}) {
+      if (ends_a.count(key(p)) != 0) ends_b.insert(key(p));
+    }
+  }
+  EXPECT_EQ(ends_b, ends_a);
+  // A short cylinder needs no bands; 0 and values below 1 are refused or one band.
+  EXPECT_EQ(LoadScene(dir.Write("short.nff", "c\n0 0 0 1\n0 0 0.1 1\n"), banded).triangles.size(), 32u);
+  LoadOptions bad;
+  bad.cone_aspect = 0.5;
+  EXPECT_THROW(LoadScene(file, bad), InputError);
 }
 
 TEST(NffReader, PrimitivesKeepFileOrderAndColours) {
