@@ -1,6 +1,7 @@
 #include "scenes/gen/generators.h"
 
 #include "common/error.h"
+#include "scene/tessellate.h"
 #include "scenes/gen/gen_common.h"
 
 namespace kdrt {
@@ -59,7 +60,7 @@ Scene GenerateScene(const std::string& name, int size, const LoadOptions& tessel
     throw InputError("generator '" + name + "': size " + std::to_string(size) + " is outside 1.." +
                      std::to_string(kMaxGeneratorSize));
   }
-  if (!(tessellation.cone_aspect == 0.0 || (tessellation.cone_aspect >= 1.0 && tessellation.cone_aspect <= 1e6))) {
+  if (!IsValidConeAspect(tessellation.cone_aspect)) {
     throw InputError("generator '" + name + "': cone aspect must be 0 (one band) or in 1..1e6");
   }
   Scene scene = g.make_tessellated != nullptr ? g.make_tessellated(size, tessellation) : g.make(size);

@@ -6,6 +6,7 @@
 
 #include "common/error.h"
 #include "scene/loaders.h"
+#include "scene/tessellate.h"
 
 namespace kdrt {
 
@@ -33,7 +34,7 @@ Scene LoadScene(const std::string& path, const LoadOptions& options) {
     throw InputError(path, 0,
                      "sphere and cone segments must be in 3.." + std::to_string(kMaxSegments));
   }
-  if (!(options.cone_aspect == 0.0 || (options.cone_aspect >= 1.0 && options.cone_aspect <= 1e6))) {
+  if (!IsValidConeAspect(options.cone_aspect)) {
     throw InputError(path, 0, "cone aspect must be 0 (one band) or in 1..1e6");
   }
   std::string ext = LowerExtension(path);

@@ -92,8 +92,9 @@ void AddCone(SceneBuilder& b, const glm::dvec3& base, double rb, const glm::dvec
   std::vector<glm::vec3> ring((bands + 1) * segments);
   for (int j = 0; j <= bands; ++j) {
     const double t = static_cast<double>(j) / bands;
-    const glm::dvec3 centre = j == bands ? apex : base + t * (apex - base);
-    const double r = j == bands ? ra : rb + t * (ra - rb);
+    // The end rings from base and apex themselves, exactly as one band's.
+    const glm::dvec3 centre = j == 0 ? base : j == bands ? apex : base + t * (apex - base);
+    const double r = j == 0 ? rb : j == bands ? ra : rb + t * (ra - rb);
     for (int i = 0; i < segments; ++i) {
       double c, s;
       UnitCircle(i, segments, &c, &s);
