@@ -42,9 +42,11 @@ constexpr double kClusterSpacing = 2.0;
 constexpr double kLayerSpacing = 2.6;
 
 long ClustersFor(long layers) { return layers * (layers + 1) * (2 * layers + 1) / 6; }
+// A hoop's side (the length of each of its cylinders) at circumradius 1.
+double HoopEdge() { return 2.0 * std::sin(kPi / kCorners); }
 // Every cylinder has the same length and radius, so the same bands.
 int CylinderBands(int segments, double aspect) {
-  const double edge = 2.0 * std::sin(kPi / kCorners);
+  const double edge = HoopEdge();
   return ConeBands(glm::dvec3(0.0), edge / kLengthPerRadius, glm::dvec3(edge, 0.0, 0.0), edge / kLengthPerRadius,
                    segments, aspect);
 }
@@ -75,8 +77,8 @@ Scene GenerateHoops(int size, const LoadOptions& tessellation) {
   const double phi = 0.5 * (1.0 + std::sqrt(5.0));
   const glm::dvec3 axes[kHoopsPerCluster] = {{0, 1, phi}, {0, -1, phi}, {1, phi, 0},
                                              {-1, phi, 0}, {phi, 0, 1}, {-phi, 0, 1}};
-  const double edge = 2.0 * std::sin(kPi / kCorners);
-  const double radius = edge / kLengthPerRadius;
+  const double radius = HoopEdge() / kLengthPerRadius;
+  const int bands = CylinderBands(segments, aspect);
   // Corners of the six hoops of a cluster centred at the origin.
   glm::dvec3 corner[kHoopsPerCluster][kCorners];
   for (int h = 0; h < kHoopsPerCluster; ++h) {
@@ -102,8 +104,7 @@ Scene GenerateHoops(int size, const LoadOptions& tessellation) {
           b.SetColor(colors[h]);
           for (int c = 0; c < kCorners; ++c) {
             const glm::dvec3 p = centre + corner[h][c];
-            AddCone(b, p, radius, centre + corner[h][(c + 1) % kCorners], radius, segments,
-                    CylinderBands(segments, aspect));
+            AddCone(b, p, radius, centre + corner[h][(c + 1) % kCorners], radius, segments, bands);
             AddSphere(b, p, radius, segments);
           }
         }

@@ -61,7 +61,7 @@ Scene GenerateScene(const std::string& name, int size, const LoadOptions& tessel
                      std::to_string(kMaxGeneratorSize));
   }
   if (!IsValidConeAspect(tessellation.cone_aspect)) {
-    throw InputError("generator '" + name + "': cone aspect must be 0 (one band) or in 1..1e6");
+    throw InputError("generator '" + name + "': " + kConeAspectRule);
   }
   Scene scene = g.make_tessellated != nullptr ? g.make_tessellated(size, tessellation) : g.make(size);
   scene.source = name + ":" + std::to_string(size);

@@ -35,7 +35,7 @@ Scene LoadScene(const std::string& path, const LoadOptions& options) {
                      "sphere and cone segments must be in 3.." + std::to_string(kMaxSegments));
   }
   if (!IsValidConeAspect(options.cone_aspect)) {
-    throw InputError(path, 0, "cone aspect must be 0 (one band) or in 1..1e6");
+    throw InputError(path, 0, kConeAspectRule);
   }
   std::string ext = LowerExtension(path);
   Scene scene;

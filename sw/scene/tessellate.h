@@ -33,6 +33,7 @@ void AddCone(SceneBuilder& b, const glm::dvec3& base, double rb, const glm::dvec
 constexpr int kMaxConeBands = 4096;
 // The cone aspects LoadOptions::cone_aspect may hold: 0 (one band) or 1..1e6.
 inline bool IsValidConeAspect(double aspect) { return aspect == 0.0 || (aspect >= 1.0 && aspect <= 1e6); }
+inline constexpr const char* kConeAspectRule = "cone aspect must be 0 (one band) or in 1..1e6";
 int ConeBands(const glm::dvec3& base, double rb, const glm::dvec3& apex, double ra, int segments,
               double max_aspect);
 

@@ -46,6 +46,12 @@ struct Numbers {
   int64_t sram_bits = 0;
 };
 
+// The quantities the estimate fits, in Fit::coef's order.
+constexpr int kQuantities = 4;
+double Quantity(const Numbers& n, int q) {
+  return q == 0 ? n.cells : q == 1 ? n.flip_flops : q == 2 ? n.depth : n.sram_bits;
+}
+
 // One unit at one format; plain units (no E and M) have their defaults.
 struct UnitKey {
   std::string unit;
@@ -190,15 +196,15 @@ std::optional<Numbers> ReadCached(const std::string& path, const UnitKey& key) {
 std::array<double, 3> Basis(int e, int m) { return {1.0, 1.0 + e + m, (m + 1.0) * (m + 1.0)}; }
 
 struct Fit {
-  std::array<double, 3> coef[4] = {};  // [cells, flip-flops, depth, SRAM bits][a, b, c]
+  std::array<double, 3> coef[kQuantities] = {};  // [cells, flip-flops, depth, SRAM bits][a, b, c]
   double residual = 0;                 // max relative residual on the fitted rows
   int points = 0;
   int w_min = 0, w_max = 0, p_min = 0, p_max = 0;  // the fitted rows' range
 
   Numbers At(int e, int m) const {
     const std::array<double, 3> x = Basis(e, m);
-    double v[4];
-    for (int q = 0; q < 4; ++q) {
+    double v[kQuantities];
+    for (int q = 0; q < kQuantities; ++q) {
       v[q] = std::max(0.0, std::round(coef[q][0] * x[0] + coef[q][1] * x[1] + coef[q][2] * x[2]));
     }
     return {static_cast<int64_t>(v[0]), static_cast<int64_t>(v[1]), static_cast<int>(v[2]),
@@ -260,11 +266,9 @@ Fit FitUnit(const std::vector<TableRow>& table, const std::string& unit) {
     fit.p_min = std::min(fit.p_min, r->key.m + 1);
     fit.p_max = std::max(fit.p_max, r->key.m + 1);
   }
-  for (int q = 0; q < 4; ++q) {
+  for (int q = 0; q < kQuantities; ++q) {
     std::vector<double> y;
-    for (const TableRow* r : rows) {
-      y.push_back(q == 0 ? r->n.cells : q == 1 ? r->n.flip_flops : q == 2 ? r->n.depth : r->n.sram_bits);
-    }
+    for (const TableRow* r : rows) y.push_back(Quantity(r->n, q));
     const auto coef = LeastSquares(x, y);
     if (!coef) throw no_fit();
     fit.coef[q] = *coef;
@@ -273,9 +277,9 @@ Fit FitUnit(const std::vector<TableRow>& table, const std::string& unit) {
   // as reported.
   for (const TableRow* r : rows) {
     const Numbers e = fit.At(r->key.e, r->key.m);
-    fit.residual = std::max({fit.residual, RelativeError(e.cells, r->n.cells),
-                             RelativeError(e.flip_flops, r->n.flip_flops), RelativeError(e.depth, r->n.depth),
-                             RelativeError(e.sram_bits, r->n.sram_bits)});
+    for (int q = 0; q < kQuantities; ++q) {
+      fit.residual = std::max(fit.residual, RelativeError(Quantity(e, q), Quantity(r->n, q)));
+    }
   }
   return fit;
 }
