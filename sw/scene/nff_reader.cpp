@@ -76,8 +76,9 @@ class NffReader {
           InputError(path_, first_sliver_line_,
                      std::to_string(sliver_cones_) +
                          " cones or cylinders tessellated as one band of slivers more than 16 times longer than "
-                         "wide, which kd-tree cells cannot separate (--cone-aspect 4 cuts them into bands; "
-                         "docs/kdtree.md, \"Long thin cylinders\")")
+                         "wide, which kd-tree cells cannot separate (--cone-aspect 4 cuts them into bands, which "
+                         "--empty-bonus 0.2 separates within the tree's depth limit; docs/kdtree.md, \"Cylinders "
+                         "cut into bands\")")
               .what());
     }
     return std::move(scene_);

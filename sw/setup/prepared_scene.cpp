@@ -129,9 +129,10 @@ void PrintLeafSizes(const TreeStats& s) {
 void PrintLeafCauses(const LeafCauses& c) {
   if (!c.recorded) return;
   std::string all, large;
-  uint64_t large_total = 0;
+  uint64_t large_total = 0, leaves = 0;
   for (int i = 0; i < kLeafCauseCount; ++i) {
     const LeafCauseCount& n = c.by_cause[i];
+    leaves += n.leaves;
     if (n.leaves == 0) continue;
     const std::string text = LeafCauseText(static_cast<LeafCause>(i));
     all += (all.empty() ? "" : ", ") + text + " " + std::to_string(n.leaves);
@@ -144,6 +145,15 @@ void PrintLeafCauses(const LeafCauses& c) {
   if (large_total > 0) {
     std::printf("large leaves   %llu over %u triangles: %s\n", static_cast<unsigned long long>(large_total),
                 kLargeLeafPrims, large.c_str());
+  }
+  // Large leaves at the depth limit in numbers mean the levels ran out before
+  // the triangles were apart; the SAH's bonus for empty cells is what spends
+  // them (docs/kdtree.md, "Where the levels go").
+  const uint64_t large_at_limit = c.by_cause[static_cast<int>(LeafCause::kDepth)].large;
+  if (large_at_limit > 0 && large_at_limit * 100 >= leaves) {
+    std::printf("               %.1f %% of the leaves are large at the depth limit: a smaller --empty-bonus "
+                "(0.2) spends fewer levels on empty space, --max-depth D allows more\n",
+                100.0 * static_cast<double>(large_at_limit) / static_cast<double>(leaves));
   }
 }
 

@@ -257,6 +257,20 @@ TEST_F(Cli, MinSplitGain) {
   }
 }
 
+// Banded hoops leave large leaves at the depth limit (the levels went to
+// empty space): kdrt info names the options that spend fewer or allow more;
+// the same scene's tree built with the smaller bonus has few enough of them
+// that the hint stays away.
+TEST_F(Cli, InfoSaysWhenTheDepthLimitLeavesLargeLeaves) {
+  const std::string hint = "of the leaves are large at the depth limit: a smaller --empty-bonus";
+  RunResult r = RunKdrt("info gen:hoops:10000 --cone-aspect 4");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(hint), std::string::npos) << r.output;
+  r = RunKdrt("info gen:hoops:10000 --cone-aspect 4 --empty-bonus 0.2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find(hint), std::string::npos) << r.output;
+}
+
 // 70,000 copies of one triangle make one leaf of 70,000: more than a packed
 // 16-bit format's node can count (docs/memory-image.md). kdrt info says so
 // and goes on; render in fp16 refuses with the reason and writes nothing,
