@@ -234,7 +234,7 @@ module rt_cache #(
   // them, so the path from the requester's ready (resp_ready_i) through
   // `deliver` to the memories' read address is a multiplexer, not an
   // encoder over every register.
-  logic [Mshrs-1:0] alloc_oh, resp_oh, valid_next, got_all_now, done_stay, done_oh_q;
+  logic [Mshrs-1:0] alloc_oh, resp_oh, beat_resp, valid_next, got_all_now, done_stay, done_oh_q;
   logic [LineBeats*Mshrs-1:0] got_next;
   logic             freeing, unused_keep_valid, unused_free_valid;
   logic [MshrW-1:0] done_keep_idx, done_free_idx;
@@ -242,10 +242,11 @@ module rt_cache #(
     alloc_oh = (m_take && !m_join) ? Mshrs'(1) << free_idx : '0;
     resp_oh = mem_resp_valid_i ? Mshrs'(1) << resp_mshr : '0;
     got_all_now = '1;
+    beat_resp = '0;
     for (int unsigned b = 0; b < LineBeats; b++) begin
-      got_next[Mshrs*b +: Mshrs] = (mshr_got_q[Mshrs*b +: Mshrs] & ~alloc_oh) |
-                                   (resp_beat == BeatW'(b) ? resp_oh : '0);
-      got_all_now &= mshr_got_q[Mshrs*b +: Mshrs] | (resp_beat == BeatW'(b) ? resp_oh : '0);
+      beat_resp = resp_beat == BeatW'(b) ? resp_oh : '0;
+      got_next[Mshrs*b +: Mshrs] = (mshr_got_q[Mshrs*b +: Mshrs] & ~alloc_oh) | beat_resp;
+      got_all_now &= mshr_got_q[Mshrs*b +: Mshrs] | beat_resp;
     end
   end
   assign freeing = deliver && (done_last || done_cnt == '0);
@@ -297,13 +298,14 @@ module rt_cache #(
   // candidates and chosen by `freeing`, as the register itself is. A
   // register that joins is never the completed one (`joinable`), so the
   // answer's increment does not enter the join's test.
-  logic [TgtW-1:0] out_keep, out_free;
+  logic [TgtW-1:0] keep_out, out_keep, out_free;
   logic            keep_is_done, fwd_keep, fwd_free;
   assign keep_is_done = done_keep_idx == done_idx;
-  assign out_keep = (deliver && keep_is_done) ? done_out + 1'b1 : mshr_out_q[done_keep_idx];
+  assign keep_out = mshr_out_q[done_keep_idx];
+  assign out_keep = (deliver && keep_is_done) ? done_out + 1'b1 : keep_out;
   assign out_free = mshr_out_q[done_free_idx];
   assign out_next_at_done = freeing ? out_free : out_keep;
-  assign fwd_keep = m_join_idx == done_keep_idx && m_join_cnt == mshr_out_q[done_keep_idx];
+  assign fwd_keep = m_join_idx == done_keep_idx && m_join_cnt == keep_out;
   assign fwd_free = m_join_idx == done_free_idx && m_join_cnt == out_free;
   assign tgt_waddr = TgtIdxW'(32'(tgt_wr_mshr) * Targets + 32'(tgt_wr_slot));
   assign tgt_raddr = TgtIdxW'(32'(done_idx_next) * Targets + 32'(out_next_at_done));
