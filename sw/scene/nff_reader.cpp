@@ -215,10 +215,10 @@ class NffReader {
     ra = std::fabs(ra);
     if (base == apex) Fail("cone apex equals its base");
     if (rb == 0.0f && ra == 0.0f) Fail("cone with both radii zero");
-    AddCone(builder_, glm::dvec3(base), rb, glm::dvec3(apex), ra, options_.cone_segments,
-            ConeBands(glm::dvec3(base), rb, glm::dvec3(apex), ra, options_.cone_segments, options_.cone_aspect));
-    if (options_.cone_aspect == 0.0 &&
-        ConeBands(glm::dvec3(base), rb, glm::dvec3(apex), ra, options_.cone_segments, kSliverAspect) > 1) {
+    const glm::dvec3 b(base), a(apex);
+    const int segments = options_.cone_segments;
+    AddCone(builder_, b, rb, a, ra, segments, ConeBands(b, rb, a, ra, segments, options_.cone_aspect));
+    if (options_.cone_aspect == 0.0 && ConeBands(b, rb, a, ra, segments, kSliverAspect) > 1) {
       if (sliver_cones_++ == 0) first_sliver_line_ = cone_line;
     }
   }
